@@ -1,0 +1,34 @@
+#ifndef TRIGRAV_INITIALIZERS_CAMERA_POSE_H_
+#define TRIGRAV_INITIALIZERS_CAMERA_POSE_H_
+
+#include <Eigen/Core>
+
+namespace trigrav {
+
+// Rigid transform from the reference frame (camera 1) to a camera: x_cam = R * x_ref + t.
+// t is the fourth column of the projection matrix [R | t], not the camera centre; the centre in the
+// reference frame is Center() = -R^T t.
+struct CameraPose {
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+
+  // -R^T t: the camera centre in reference (camera 1) coordinates.
+  Eigen::Vector3d Center() const;
+  // Transforms a point given in reference coordinates into this camera's frame.
+  Eigen::Vector3d Apply(const Eigen::Vector3d& point_in_ref) const { return R * point_in_ref + t; }
+  // True when every entry of R and t is finite.
+  bool IsFinite() const;
+};
+
+// Poses of cameras 2 and 3 relative to camera 1. Scale convention of every trigrav solver:
+// |cam2_from_cam1.Center()| = 1, so |cam3_from_cam1.Center()| is the observable relative scale.
+struct ThreeViewPose {
+  CameraPose cam2_from_cam1;
+  CameraPose cam3_from_cam1;
+
+  bool IsFinite() const { return cam2_from_cam1.IsFinite() && cam3_from_cam1.IsFinite(); }
+};
+
+}  // namespace trigrav
+
+#endif  // TRIGRAV_INITIALIZERS_CAMERA_POSE_H_

@@ -1,0 +1,140 @@
+#include "solver_utils.h"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace trigrav {
+namespace internal {
+namespace {
+
+void CheckRays(const char* solver, const char* name, const std::vector<Eigen::Vector3d>& rays) {
+  for (std::size_t n = 0; n < rays.size(); ++n) {
+    const double norm = rays[n].norm();
+    if (!rays[n].allFinite() || !(norm > 0.0) || !std::isfinite(norm)) {
+      std::ostringstream message;
+      message << "trigrav: " << solver << ": " << name << "[" << n << "] is "
+              << (rays[n].allFinite() ? "a zero-length ray" : "not finite");
+      throw std::invalid_argument(message.str());
+    }
+  }
+}
+
+}  // namespace
+
+void CheckTriplets(const char* solver, std::size_t min_triplets, std::size_t max_triplets,
+                   const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
+                   const std::vector<Eigen::Vector3d>& x3, const void* solutions) {
+  std::ostringstream message;
+  message << "trigrav: " << solver << ": ";
+  if (solutions == nullptr) {
+    message << "solutions is null";
+    throw std::invalid_argument(message.str());
+  }
+  if (x1.size() != x2.size() || x1.size() != x3.size()) {
+    message << "x1, x2, x3 differ in size (" << x1.size() << ", " << x2.size() << ", " << x3.size()
+            << ")";
+    throw std::invalid_argument(message.str());
+  }
+  if (x1.size() < min_triplets || x1.size() > max_triplets) {
+    message << "needs ";
+    if (min_triplets == max_triplets) {
+      message << "exactly " << min_triplets;
+    } else {
+      message << "at least " << min_triplets;
+    }
+    message << " triplets, got " << x1.size();
+    throw std::invalid_argument(message.str());
+  }
+  CheckRays(solver, "x1", x1);
+  CheckRays(solver, "x2", x2);
+  CheckRays(solver, "x3", x3);
+}
+
+void CheckGravity(const char* solver, const char* name, const Eigen::Vector3d& gravity) {
+  const double norm = gravity.norm();
+  if (!gravity.allFinite() || !(norm > 0.0) || !std::isfinite(norm)) {
+    std::ostringstream message;
+    message << "trigrav: " << solver << ": " << name << " is "
+            << (gravity.allFinite() ? "zero" : "not finite");
+    throw std::invalid_argument(message.str());
+  }
+}
+
+Eigen::Vector3d NullVector3(const Eigen::Matrix3d& M) {
+  const double scale = M.cwiseAbs().maxCoeff();
+  if (!(scale > 0.0) || !std::isfinite(scale)) return Eigen::Vector3d::Zero();
+  const Eigen::Matrix3d A = M / scale;
+  // adj(A) has columns r_j x r_k of the rows of A; for rank 2 every non-zero column spans the null space.
+  Eigen::Matrix3d adjugate;
+  adjugate.col(0) = A.row(1).cross(A.row(2)).transpose();
+  adjugate.col(1) = A.row(2).cross(A.row(0)).transpose();
+  adjugate.col(2) = A.row(0).cross(A.row(1)).transpose();
+  Eigen::Index best = 0;
+  const double largest = adjugate.colwise().squaredNorm().maxCoeff(&best);
+  if (!(largest > 0.0)) return Eigen::Vector3d::Zero();
+  Eigen::Vector3d x = adjugate.col(best).normalized();
+  // Inverse iteration: (A^T A)^-1 is proportional to adj(A) adj(A)^T.
+  constexpr int kMaxIterations = 50;
+  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+    Eigen::Vector3d next = adjugate * (adjugate.transpose() * x);
+    const double norm = next.norm();
+    if (!(norm > 0.0)) break;
+    next /= norm;
+    if (next.dot(x) < 0.0) next = -next;
+    const double change = (next - x).squaredNorm();
+    x = next;
+    if (change < 1e-30) break;
+  }
+  return x;
+}
+
+
+Eigen::Matrix<double, 4, 6> TranslationRows(const Eigen::Vector3d& x1, const Eigen::Vector3d& x2,
+                                            const Eigen::Vector3d& x3, const Eigen::Matrix3d& R2,
+                                            const Eigen::Matrix3d& R3) {
+  Eigen::Vector3d p[2], r[2];
+  PerpendicularBasis(x2, &p[0], &p[1]);
+  PerpendicularBasis(x3, &r[0], &r[1]);
+  const Eigen::Vector3d u = x2.cross(R2 * x1);
+  const Eigen::Vector3d z = (R3 * x1).cross(x3);
+  Eigen::Matrix<double, 4, 6> rows;
+  for (int a = 0; a < 2; ++a) {
+    for (int b = 0; b < 2; ++b) {
+      rows.block<1, 3>(2 * a + b, 0) = z.dot(r[b]) * (p[a].cross(x2)).transpose() * R2;
+      rows.block<1, 3>(2 * a + b, 3) = p[a].dot(u) * (r[b].cross(x3)).transpose() * R3;
+    }
+  }
+  return rows;
+}
+
+bool OrientScaleAndMakePose(const std::vector<Eigen::Vector3d>& x1,
+                            const std::vector<Eigen::Vector3d>& x2,
+                            const std::vector<Eigen::Vector3d>& x3, double theta2,
+                            Eigen::Vector3d center2, double theta3, Eigen::Vector3d center3,
+                            ThreeViewPose* pose) {
+  if (!std::isfinite(theta2) || !std::isfinite(theta3) || !center2.allFinite() ||
+      !center3.allFinite()) {
+    return false;
+  }
+  const Eigen::Matrix3d R2 = RotationAboutY(theta2);
+  const Eigen::Matrix3d R3 = RotationAboutY(theta3);
+  int votes = 0;
+  for (std::size_t n = 0; n < x1.size(); ++n) {
+    for (const double depth : {ViewOneDepth(x1[n], x2[n], R2, center2),
+                               ViewOneDepth(x1[n], x3[n], R3, center3)}) {
+      votes += (depth > 0.0) - (depth < 0.0);
+    }
+  }
+  const double scale = center2.norm();
+  constexpr double kMinScale = 1e-12;
+  if (!(scale > kMinScale * std::max(1.0, center3.norm()))) return false;
+  const double factor = (votes < 0 ? -1.0 : 1.0) / scale;
+  center2 *= factor;
+  center3 *= factor;
+  pose->cam2_from_cam1 = PoseFromYawAndCenter(theta2, center2);
+  pose->cam3_from_cam1 = PoseFromYawAndCenter(theta3, center3);
+  return pose->IsFinite();
+}
+
+}  // namespace internal
+}  // namespace trigrav

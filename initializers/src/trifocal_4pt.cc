@@ -1,0 +1,291 @@
+#include "trigrav/initializers/trifocal_4pt.h"
+
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/QR>
+
+#include "solver_utils.h"
+
+namespace trigrav {
+namespace {
+
+using Vector17d = Eigen::Matrix<double, 17, 1>;
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+using Matrix17d = Eigen::Matrix<double, 17, 17>;
+using TensorSlices = std::array<Eigen::Matrix3d, 3>;
+
+constexpr int kMinTriplets = 4;
+
+// Where Q_1..Q_17 sit in the aligned trifocal tensor (paper eqs c2-c4, checked in math note section 2):
+// entry T_slice(row, col) = sign * Q_q, all indices 0-based. Six entries of T are always zero.
+struct TensorEntry {
+  int q, slice, row, col;
+  double sign;
+};
+constexpr std::array<TensorEntry, 21> kTensorEntries = {{
+    {0, 0, 0, 0, 1},  {1, 0, 0, 1, 1},  {1, 2, 2, 1, 1},   {2, 0, 0, 2, 1},  {3, 0, 1, 0, 1},
+    {3, 2, 1, 2, 1},  {4, 0, 1, 2, 1},  {4, 2, 1, 0, -1},  {5, 0, 2, 0, 1},  {6, 0, 2, 1, 1},
+    {6, 2, 0, 1, -1}, {7, 0, 2, 2, 1},  {8, 1, 0, 1, 1},   {9, 1, 1, 0, 1},  {10, 1, 1, 1, 1},
+    {11, 1, 1, 2, 1}, {12, 1, 2, 1, 1}, {13, 2, 0, 0, 1},  {14, 2, 0, 2, 1}, {15, 2, 2, 0, 1},
+    {16, 2, 2, 2, 1},
+}};
+
+// The 4 incidence rows of one triplet in q (math note section 2): p_a^T (sum_i x1_i T_i) r_b = 0 for
+// orthonormal bases (p_a) of x2^perp and (r_b) of x3^perp, equivalent to eq. c6.
+Eigen::Matrix<double, 4, 17> IncidenceRows(const Eigen::Vector3d& x1, const Eigen::Vector3d& x2,
+                                           const Eigen::Vector3d& x3) {
+  Eigen::Vector3d p[2], r[2];
+  internal::PerpendicularBasis(x2, &p[0], &p[1]);
+  internal::PerpendicularBasis(x3, &r[0], &r[1]);
+  Eigen::Matrix<double, 4, 17> rows = Eigen::Matrix<double, 4, 17>::Zero();
+  for (int a = 0; a < 2; ++a) {
+    for (int b = 0; b < 2; ++b) {
+      for (const TensorEntry& e : kTensorEntries) {
+        rows(2 * a + b, e.q) += e.sign * x1[e.slice] * p[a][e.row] * r[b][e.col];
+      }
+    }
+  }
+  return rows;
+}
+
+TensorSlices TensorFromQ(const Vector17d& q) {
+  TensorSlices T = {Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero()};
+  for (const TensorEntry& e : kTensorEntries) T[e.slice](e.row, e.col) = e.sign * q[e.q];
+  return T;
+}
+
+// q = E a for the constrained tensor with epipoles e' = e, e'' = f (eqs f2-f6, math note 3.3 step 2).
+Eigen::Matrix<double, 17, 6> ConstrainedTensorBasis(const Eigen::Vector3d& e, const Eigen::Vector3d& f) {
+  Eigen::Matrix<double, 17, 6> E = Eigen::Matrix<double, 17, 6>::Zero();
+  E(0, 0) = f[0];  E(0, 3) = -e[0];   // Q1  = f1 a1 - e1 a4
+  E(1, 0) = f[1];                      // Q2  = f2 a1
+  E(2, 0) = f[2];  E(2, 4) = e[0];    // Q3  = f3 a1 + e1 a5
+  E(3, 3) = -e[1];                     // Q4  = -e2 a4
+  E(4, 4) = e[1];                      // Q5  = e2 a5
+  E(5, 1) = -f[0]; E(5, 3) = -e[2];   // Q6  = -f1 a2 - e3 a4
+  E(6, 1) = -f[1];                     // Q7  = -f2 a2
+  E(7, 1) = -f[2]; E(7, 4) = e[2];    // Q8  = -f3 a2 + e3 a5
+  E(8, 5) = -e[0];                     // Q9  = -e1 a6
+  E(9, 2) = f[0];                      // Q10 = f1 a3
+  E(10, 2) = f[1]; E(10, 5) = -e[1];  // Q11 = f2 a3 - e2 a6
+  E(11, 2) = f[2];                     // Q12 = f3 a3
+  E(12, 5) = -e[2];                    // Q13 = -e3 a6
+  E(13, 1) = f[0]; E(13, 4) = -e[0];  // Q14 = f1 a2 - e1 a5
+  E(14, 1) = f[2]; E(14, 3) = -e[0];  // Q15 = f3 a2 - e1 a4
+  E(15, 0) = f[0]; E(15, 4) = -e[2];  // Q16 = f1 a1 - e3 a5
+  E(16, 0) = f[2]; E(16, 3) = -e[2];  // Q17 = f3 a1 - e3 a4
+  return E;
+}
+
+// Yaws and centres (up to a common factor) of an aligned estimate.
+struct AlignedEstimate {
+  double theta2 = 0.0, theta3 = 0.0;
+  Eigen::Vector3d center2 = Eigen::Vector3d::Zero(), center3 = Eigen::Vector3d::Zero();
+};
+
+// Centres from q given the yaws: R2 c2 = (Q9, ty2, Q13), R3 c3 = (-Q10, ty3, -Q12) (math note 2).
+void CentersFromQ(const Vector17d& q, double ty2, double ty3, AlignedEstimate* estimate) {
+  estimate->center2 =
+      RotationAboutY(estimate->theta2).transpose() * Eigen::Vector3d(q[8], ty2, q[12]);
+  estimate->center3 =
+      RotationAboutY(estimate->theta3).transpose() * Eigen::Vector3d(-q[9], ty3, -q[11]);
+}
+
+// Epipoles e', e'' of the tensor T(q): left null vectors of [u1 u2 u3] and [v1 v2 v3], u_i and v_i the
+// left and right null vectors of T_i (eq. f1). False if they are not defined.
+bool EpipolesFromQ(const Vector17d& q, Eigen::Vector3d* epipole2, Eigen::Vector3d* epipole3) {
+  const TensorSlices T = TensorFromQ(q);
+  Eigen::Matrix3d left_null_vectors, right_null_vectors;
+  for (int i = 0; i < 3; ++i) {
+    left_null_vectors.col(i) = internal::NullVector3(T[i].transpose());
+    right_null_vectors.col(i) = internal::NullVector3(T[i]);
+  }
+  *epipole2 = internal::NullVector3(left_null_vectors.transpose());
+  *epipole3 = internal::NullVector3(right_null_vectors.transpose());
+  return !epipole2->isZero() && !epipole3->isZero();
+}
+
+// Constraint enforcement for given epipoles (eqs f2-f7) and the pose read from a (math note 3.3 step
+// 4). R_A is the triangular factor of the incidence system. False if the basis E is degenerate.
+bool EnforceConstraints(const Matrix17d& R_A, const Eigen::Vector3d& epipole2,
+                        const Eigen::Vector3d& epipole3, AlignedEstimate* estimate) {
+  // min |A E a| s.t. |E a| = 1 with E = Q_E R_E: b = smallest right singular vector of A Q_E,
+  // a = R_E^-1 b; |A Q_E b| = |R_A Q_E b|.
+  const Eigen::HouseholderQR<Eigen::Matrix<double, 17, 6>> qr_E(
+      ConstrainedTensorBasis(epipole2, epipole3));
+  const Eigen::Matrix<double, 6, 6> R_E = qr_E.matrixQR().topRows<6>().triangularView<Eigen::Upper>();
+  const double largest = R_E.diagonal().cwiseAbs().maxCoeff();
+  if (!(R_E.diagonal().cwiseAbs().minCoeff() > 1e-10 * largest)) return false;
+  const Eigen::Matrix<double, 17, 6> Q_E =
+      qr_E.householderQ() * Eigen::Matrix<double, 17, 6>::Identity();
+  const Eigen::Matrix<double, 17, 6> AQ = R_A.triangularView<Eigen::Upper>() * Q_E;
+  Vector6d a = internal::SmallestRightSingularVectorOfTriangular<6>(internal::TriangularFactor(AQ));
+  R_E.triangularView<Eigen::Upper>().solveInPlace(a);
+
+  // a = lambda (beta c2, beta s2, beta, alpha c3, alpha s3, alpha), e' = -R2 c2 / alpha,
+  // e'' = -R3 c3 / beta: c2 = -a6 R2^T e', c3 = -a3 R3^T e'' up to the common factor 1/lambda.
+  const double sign3 = a[2] < 0.0 ? -1.0 : 1.0;
+  const double sign6 = a[5] < 0.0 ? -1.0 : 1.0;
+  estimate->theta2 = std::atan2(sign3 * a[1], sign3 * a[0]);
+  estimate->theta3 = std::atan2(sign6 * a[4], sign6 * a[3]);
+  estimate->center2 = -a[5] * RotationAboutY(estimate->theta2).transpose() * epipole2;
+  estimate->center3 = -a[2] * RotationAboutY(estimate->theta3).transpose() * epipole3;
+  return true;
+}
+
+// Yaws from all 8 relations of eq. c5 by least squares, then ty2, ty3 (math note 3.2).
+bool EstimateLeastSquares(const Vector17d& q, AlignedEstimate* estimate) {
+  Eigen::Matrix<double, 8, 4> M;
+  Eigen::Matrix<double, 8, 1> rhs;
+  M << q[9], 0, q[8], 0,        //
+      q[11], 0, 0, -q[8],       //
+      0, -q[9], q[12], 0,       //
+      0, -q[11], 0, -q[12],     //
+      0, q[9], 0, q[8],         //
+      0, q[11], q[8], 0,        //
+      q[9], 0, 0, q[12],        //
+      q[11], 0, q[12], 0;
+  rhs << q[0], q[2], q[5], q[7], q[13], q[14], q[15], q[16];
+  const Eigen::ColPivHouseholderQR<Eigen::Matrix<double, 8, 4>> qr(M);
+  if (qr.rank() < 4) return false;
+  const Eigen::Vector4d cs = qr.solve(rhs);
+  estimate->theta2 = std::atan2(cs[1], cs[0]);
+  estimate->theta3 = std::atan2(cs[3], cs[2]);
+  const double c2 = std::cos(estimate->theta2), s2 = std::sin(estimate->theta2);
+  const double c3 = std::cos(estimate->theta3), s3 = std::sin(estimate->theta3);
+  // Q4 = c3 ty2, Q5 = -s3 ty2, Q11 = ty2 - ty3, Q2 = -c2 ty3, Q7 = s2 ty3.
+  Eigen::Matrix<double, 5, 2> N;
+  Eigen::Matrix<double, 5, 1> n_rhs;
+  N << c3, 0, -s3, 0, 1, -1, 0, -c2, 0, s2;
+  n_rhs << q[3], q[4], q[10], q[1], q[6];
+  const Eigen::Vector2d ty = N.colPivHouseholderQr().solve(n_rhs);
+  CentersFromQ(q, ty[0], ty[1], estimate);
+  return true;
+}
+
+// The paper's closed forms, eqs c8-c11 (exact, but singular when Q10 Q13 = Q9 Q12, Q9 = 0 or Q13 = 0).
+bool EstimatePaperClosedForm(const Vector17d& q, AlignedEstimate* estimate) {
+  const double denominator = q[9] * q[12] - q[8] * q[11];
+  const double s2 = (q[7] * q[8] + q[12] * q[13]) / denominator;
+  const double c2 = (q[0] * q[12] - q[8] * q[16]) / denominator;
+  estimate->theta2 = std::atan2(s2, c2);
+  const double c2n = std::cos(estimate->theta2), s2n = std::sin(estimate->theta2);
+  const double s3 = -(q[7] + s2n * q[11]) / q[12];
+  const double c3 = (q[0] - c2n * q[9]) / q[8];
+  estimate->theta3 = std::atan2(s3, c3);
+  const double c3n = std::cos(estimate->theta3), s3n = std::sin(estimate->theta3);
+  CentersFromQ(q, c3n * q[3] - s3n * q[4], s2n * q[6] - c2n * q[1], estimate);  // eqs c9, c11
+  return std::isfinite(estimate->theta2) && std::isfinite(estimate->theta3);
+}
+
+// (c2; c3) = null vector of the stacked translation rows with the yaws fixed (math note 4.1).
+template <int Rows>
+void ResolveCenters(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
+                    const std::vector<Eigen::Vector3d>& x3, AlignedEstimate* estimate) {
+  const Eigen::Matrix3d R2 = RotationAboutY(estimate->theta2);
+  const Eigen::Matrix3d R3 = RotationAboutY(estimate->theta3);
+  Eigen::Matrix<double, Rows, 6> F(4 * x1.size(), 6);
+  for (std::size_t n = 0; n < x1.size(); ++n) {
+    F.template middleRows<4>(4 * n) = internal::TranslationRows(x1[n], x2[n], x3[n], R2, R3);
+  }
+  const Vector6d centers =
+      internal::SmallestRightSingularVectorOfTriangular<6>(internal::TriangularFactor(F));
+  // Keep the sign of the previous centres so the cheirality vote starts from a consistent guess.
+  const double sign = centers.head<3>().dot(estimate->center2) + centers.tail<3>().dot(estimate->center3);
+  estimate->center2 = (sign < 0.0 ? -1.0 : 1.0) * centers.head<3>();
+  estimate->center3 = (sign < 0.0 ? -1.0 : 1.0) * centers.tail<3>();
+}
+
+// Rows = 16 for the minimal case (fixed size, no heap allocation) or Eigen::Dynamic.
+template <int Rows>
+int SolveAligned(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
+                 const std::vector<Eigen::Vector3d>& x3, const Trifocal4ptOptions& options,
+                 std::vector<ThreeViewPose>* solutions) {
+  Eigen::Matrix<double, Rows, 17> A(4 * x1.size(), 17);
+  for (std::size_t n = 0; n < x1.size(); ++n) {
+    A.template middleRows<4>(4 * n) = IncidenceRows(x1[n], x2[n], x3[n]);
+  }
+  if (!A.allFinite()) return 0;
+  const Matrix17d R_A = internal::TriangularFactor(A);
+  const Vector17d q = internal::SmallestRightSingularVectorOfTriangular<17>(R_A);
+
+  AlignedEstimate estimate;
+  bool ok = false;
+  Eigen::Vector3d epipole2, epipole3;
+  switch (options.recovery) {
+    case Trifocal4ptRecovery::kEnforced:
+      ok = EpipolesFromQ(q, &epipole2, &epipole3) &&
+           EnforceConstraints(R_A, epipole2, epipole3, &estimate);
+      break;
+    case Trifocal4ptRecovery::kLeastSquares:
+      ok = EstimateLeastSquares(q, &estimate);
+      break;
+    case Trifocal4ptRecovery::kPaperClosedForm:
+      ok = EstimatePaperClosedForm(q, &estimate);
+      break;
+  }
+  if (!ok || !std::isfinite(estimate.theta2) || !std::isfinite(estimate.theta3)) return 0;
+  constexpr int kFixedRows = Rows == 16 ? 16 : Eigen::Dynamic;
+  if (options.resolve_translations) ResolveCenters<kFixedRows>(x1, x2, x3, &estimate);
+  if (options.recovery == Trifocal4ptRecovery::kEnforced) {
+    // Epipoles of the current pose, e' ~ R2 c2 and e'' ~ R3 c3, then enforcement and centres again.
+    for (int iteration = 0; iteration < options.epipole_iterations; ++iteration) {
+      epipole2 = (RotationAboutY(estimate.theta2) * estimate.center2).normalized();
+      epipole3 = (RotationAboutY(estimate.theta3) * estimate.center3).normalized();
+      if (!epipole2.allFinite() || !epipole3.allFinite() ||
+          !EnforceConstraints(R_A, epipole2, epipole3, &estimate)) {
+        return 0;
+      }
+      if (options.resolve_translations) ResolveCenters<kFixedRows>(x1, x2, x3, &estimate);
+    }
+  }
+
+  ThreeViewPose pose;
+  if (!internal::OrientScaleAndMakePose(x1, x2, x3, estimate.theta2, estimate.center2,
+                                        estimate.theta3, estimate.center3, &pose)) {
+    return 0;
+  }
+  solutions->push_back(pose);
+  return 1;
+}
+
+}  // namespace
+
+int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
+                     const std::vector<Eigen::Vector3d>& x3, const Trifocal4ptOptions& options,
+                     std::vector<ThreeViewPose>* solutions) {
+  internal::CheckTriplets("SolveTrifocal4pt", kMinTriplets, std::numeric_limits<std::size_t>::max(),
+                          x1, x2, x3, solutions);
+  solutions->clear();
+  if (x1.size() == kMinTriplets) return SolveAligned<16>(x1, x2, x3, options, solutions);
+  return SolveAligned<Eigen::Dynamic>(x1, x2, x3, options, solutions);
+}
+
+int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
+                     const std::vector<Eigen::Vector3d>& x3, std::vector<ThreeViewPose>* solutions) {
+  return SolveTrifocal4pt(x1, x2, x3, Trifocal4ptOptions(), solutions);
+}
+
+int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
+                     const std::vector<Eigen::Vector3d>& x3, const Eigen::Vector3d& gravity_in_cam1,
+                     const Eigen::Vector3d& gravity_in_cam2, const Eigen::Vector3d& gravity_in_cam3,
+                     const Trifocal4ptOptions& options, std::vector<ThreeViewPose>* solutions) {
+  return internal::SolveWithGravity(
+      "SolveTrifocal4pt", x1, x2, x3, gravity_in_cam1, gravity_in_cam2, gravity_in_cam3, solutions,
+      [&options](const std::vector<Eigen::Vector3d>& y1, const std::vector<Eigen::Vector3d>& y2,
+                 const std::vector<Eigen::Vector3d>& y3, std::vector<ThreeViewPose>* out) {
+        return SolveTrifocal4pt(y1, y2, y3, options, out);
+      });
+}
+
+int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
+                     const std::vector<Eigen::Vector3d>& x3, const Eigen::Vector3d& gravity_in_cam1,
+                     const Eigen::Vector3d& gravity_in_cam2, const Eigen::Vector3d& gravity_in_cam3,
+                     std::vector<ThreeViewPose>* solutions) {
+  return SolveTrifocal4pt(x1, x2, x3, gravity_in_cam1, gravity_in_cam2, gravity_in_cam3,
+                          Trifocal4ptOptions(), solutions);
+}
+
+}  // namespace trigrav

@@ -1,0 +1,273 @@
+#include "trigrav/initializers/trifocal_4pt.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "trigrav/initializers/gravity.h"
+#include "trigrav/initializers/pose_metrics.h"
+#include "trigrav/initializers/synthetic_scene.h"
+
+namespace trigrav {
+namespace {
+
+// Solves a scene through the gravity overload with the measured gravity of each view.
+int SolveScene(const SyntheticScene& scene, const Trifocal4ptOptions& options,
+               std::vector<ThreeViewPose>* solutions) {
+  return SolveTrifocal4pt(scene.rays[0], scene.rays[1], scene.rays[2],
+                          scene.gravity_in_cam_measured[0], scene.gravity_in_cam_measured[1],
+                          scene.gravity_in_cam_measured[2], options, solutions);
+}
+
+double MaxError(const SyntheticScene& scene, const ThreeViewPose& estimate) {
+  const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(scene.ground_truth, estimate);
+  return std::max(e.MaxRotationDeg(), e.MaxTranslationDeg());
+}
+
+TEST(Trifocal4pt, RecoversTruePoseNoiseFreeOnThousandScenes) {
+  std::mt19937_64 rng(1);
+  SyntheticSceneOptions scene_options;
+  int failures = 0;
+  double worst = 0.0;
+  for (int trial = 0; trial < 1000; ++trial) {
+    const SyntheticScene scene = GenerateSyntheticScene(scene_options, &rng);
+    std::vector<ThreeViewPose> solutions;
+    ASSERT_EQ(SolveScene(scene, Trifocal4ptOptions(), &solutions), 1);
+    ASSERT_EQ(solutions.size(), 1u);
+    EXPECT_NEAR(solutions[0].cam2_from_cam1.Center().norm(), 1.0, 1e-12);
+    const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(scene.ground_truth, solutions[0]);
+    const double error = std::max(e.MaxRotationDeg(), e.MaxTranslationDeg());
+    worst = std::max(worst, error);
+    failures += !(error < 1e-8 && e.relative_scale < 1e-9);
+  }
+  EXPECT_EQ(failures, 0) << "worst error " << worst << " deg";
+}
+
+// Scenes unlike the default: other focal lengths, yaw well beyond 10 deg, tilts of several degrees,
+// more triplets than the minimum.
+TEST(Trifocal4pt, GeneralisesToUnseenScenes) {
+  std::mt19937_64 rng(2);
+  struct Case {
+    double focal_px, max_yaw_deg, max_tilt_deg;
+    int num_points;
+  };
+  for (const Case c : {Case{300.0, 45.0, 5.0, 4}, Case{1200.0, 90.0, 8.0, 4},
+                       Case{800.0, 170.0, 3.0, 7}, Case{500.0, 30.0, 15.0, 20}}) {
+    SyntheticSceneOptions scene_options;
+    scene_options.focal_px = c.focal_px;
+    scene_options.max_yaw_deg = c.max_yaw_deg;
+    scene_options.max_tilt_deg = c.max_tilt_deg;
+    scene_options.num_points = c.num_points;
+    scene_options.max_depth_m = 80.0;
+    for (int trial = 0; trial < 200; ++trial) {
+      const SyntheticScene scene = GenerateSyntheticScene(scene_options, &rng);
+      std::vector<ThreeViewPose> solutions;
+      ASSERT_EQ(SolveScene(scene, Trifocal4ptOptions(), &solutions), 1);
+      ASSERT_LT(MaxError(scene, solutions[0]), 1e-8)
+          << "f " << c.focal_px << " yaw " << c.max_yaw_deg << " trial " << trial;
+    }
+  }
+}
+
+// Every recovery variant is exact without noise; the paper's closed form may return 0 on the rare
+// scene where its denominators vanish, never a wrong pose.
+TEST(Trifocal4pt, PaperVariantsExactNoiseFree) {
+  std::mt19937_64 rng(3);
+  for (const Trifocal4ptRecovery recovery :
+       {Trifocal4ptRecovery::kEnforced, Trifocal4ptRecovery::kLeastSquares,
+        Trifocal4ptRecovery::kPaperClosedForm}) {
+    for (const bool resolve : {false, true}) {
+      Trifocal4ptOptions options;
+      options.recovery = recovery;
+      options.resolve_translations = resolve;
+      for (int trial = 0; trial < 200; ++trial) {
+        const SyntheticScene scene = GenerateSyntheticScene(SyntheticSceneOptions(), &rng);
+        std::vector<ThreeViewPose> solutions;
+        const int count = SolveScene(scene, options, &solutions);
+        ASSERT_EQ(count, 1);
+        EXPECT_LT(MaxError(scene, solutions[0]), 1e-7) << static_cast<int>(recovery);
+      }
+    }
+  }
+}
+
+// With noise the error grows smoothly: medians increase with the noise level and stay in the range
+// the math note measured (section 6: 3.2 deg rotation at 1 px with 4 triplets).
+TEST(Trifocal4pt, DegradesSmoothlyWithNoise) {
+  std::vector<double> medians;
+  for (const double noise_px : {0.1, 0.5, 1.0, 2.0}) {
+    std::mt19937_64 rng(4);
+    SyntheticSceneOptions scene_options;
+    scene_options.pixel_noise_px = noise_px;
+    std::vector<double> rotation_errors;
+    for (int trial = 0; trial < 300; ++trial) {
+      const SyntheticScene scene = GenerateSyntheticScene(scene_options, &rng);
+      std::vector<ThreeViewPose> solutions;
+      if (SolveScene(scene, Trifocal4ptOptions(), &solutions) == 0) continue;
+      ASSERT_TRUE(solutions[0].IsFinite());
+      const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(scene.ground_truth, solutions[0]);
+      rotation_errors.push_back(e.rotation_deg[0]);
+      rotation_errors.push_back(e.rotation_deg[1]);
+    }
+    ASSERT_GT(rotation_errors.size(), 500u);
+    std::nth_element(rotation_errors.begin(), rotation_errors.begin() + rotation_errors.size() / 2,
+                     rotation_errors.end());
+    medians.push_back(rotation_errors[rotation_errors.size() / 2]);
+  }
+  EXPECT_LT(medians[0], 1.0);
+  EXPECT_GT(medians[2], 1.0);
+  EXPECT_LT(medians[2], 6.0);
+  for (std::size_t i = 1; i < medians.size(); ++i) EXPECT_GT(medians[i], medians[i - 1]);
+}
+
+// Enforcement and more triplets help, as in math note table 3.5.
+TEST(Trifocal4pt, EnforcementAndMoreTripletsReduceError) {
+  auto median_rotation_error = [](const Trifocal4ptOptions& options, int num_points) {
+    std::mt19937_64 rng(5);
+    SyntheticSceneOptions scene_options;
+    scene_options.pixel_noise_px = 1.0;
+    scene_options.num_points = num_points;
+    std::vector<double> errors;
+    for (int trial = 0; trial < 300; ++trial) {
+      const SyntheticScene scene = GenerateSyntheticScene(scene_options, &rng);
+      std::vector<ThreeViewPose> solutions;
+      if (SolveScene(scene, options, &solutions) == 0) {
+        errors.push_back(180.0);
+        continue;
+      }
+      errors.push_back(ComputeThreeViewPoseErrors(scene.ground_truth, solutions[0]).MaxRotationDeg());
+    }
+    std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
+    return errors[errors.size() / 2];
+  };
+  Trifocal4ptOptions least_squares;
+  least_squares.recovery = Trifocal4ptRecovery::kLeastSquares;
+  const double enforced4 = median_rotation_error(Trifocal4ptOptions(), 4);
+  EXPECT_LT(enforced4, 0.6 * median_rotation_error(least_squares, 4));
+  EXPECT_LT(median_rotation_error(Trifocal4ptOptions(), 10), 0.3 * enforced4);
+}
+
+// Aligning by hand with the same alignment rotations gives bit-for-bit the overload's poses. Another
+// valid alignment (pitch/roll: differs by a yaw) gives the same poses noise-free; with noise the
+// normalisation |q| = 1 is not yaw-invariant, so results then differ at the noise level only.
+TEST(Trifocal4pt, GravityOverloadMatchesAligningByHand) {
+  std::mt19937_64 rng(6);
+  for (const double noise_px : {0.0, 0.5}) {
+    SyntheticSceneOptions scene_options;
+    scene_options.pixel_noise_px = noise_px;
+    scene_options.num_points = 6;
+    for (int trial = 0; trial < 50; ++trial) {
+      const SyntheticScene scene = GenerateSyntheticScene(scene_options, &rng);
+      std::vector<ThreeViewPose> from_gravity, by_hand;
+      ASSERT_EQ(SolveTrifocal4pt(scene.rays[0], scene.rays[1], scene.rays[2],
+                                 scene.gravity_in_cam_measured[0], scene.gravity_in_cam_measured[1],
+                                 scene.gravity_in_cam_measured[2], &from_gravity),
+                1);
+      const std::array<Eigen::Matrix3d, 3> from_gravity_alignment = {
+          GravityAlignmentFromGravity(scene.gravity_in_cam_measured[0]),
+          GravityAlignmentFromGravity(scene.gravity_in_cam_measured[1]),
+          GravityAlignmentFromGravity(scene.gravity_in_cam_measured[2])};
+      for (const auto& align : {from_gravity_alignment, scene.gravity_alignment_measured}) {
+        const bool same_alignment = &align == &from_gravity_alignment;
+        if (!same_alignment && noise_px > 0.0) continue;
+        ASSERT_EQ(SolveTrifocal4pt(AlignRays(align[0], scene.rays[0]),
+                                   AlignRays(align[1], scene.rays[1]),
+                                   AlignRays(align[2], scene.rays[2]), &by_hand),
+                  1);
+        const ThreeViewPose unaligned = UnalignThreeViewPose(by_hand[0], align[0], align[1], align[2]);
+        const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(unaligned, from_gravity[0]);
+        const double tolerance = same_alignment ? 0.0 : 1e-8;
+        EXPECT_LE(e.MaxRotationDeg(), tolerance);
+        EXPECT_LE(e.MaxTranslationDeg(), tolerance);
+        EXPECT_LE(e.relative_scale, tolerance);
+      }
+    }
+  }
+}
+
+TEST(Trifocal4pt, YawNear180Degrees) {
+  std::mt19937_64 rng(7);
+  SyntheticSceneOptions scene_options;
+  scene_options.max_yaw_deg = 0.0;
+  const SyntheticScene base = GenerateSyntheticScene(scene_options, &rng);
+  // Rays seen by cameras turned by 180 deg about gravity: cameras 2 and 3 look back at the points
+  // through their mirror image. Instead rotate the aligned frames of 2 and 3 and map rays accordingly.
+  for (const double yaw : {M_PI, M_PI - 1e-9, -M_PI + 1e-6}) {
+    const Eigen::Matrix3d turn = RotationAboutY(yaw);
+    std::vector<Eigen::Vector3d> x1 = AlignRays(base.gravity_alignment_true[0], base.rays[0]);
+    std::vector<Eigen::Vector3d> x2 = AlignRays(turn * base.gravity_alignment_true[1], base.rays[1]);
+    std::vector<Eigen::Vector3d> x3 = AlignRays(base.gravity_alignment_true[2], base.rays[2]);
+    std::vector<ThreeViewPose> solutions;
+    ASSERT_EQ(SolveTrifocal4pt(x1, x2, x3, &solutions), 1);
+    const ThreeViewPose truth_aligned = {
+        UnalignPose(base.ground_truth.cam2_from_cam1, base.gravity_alignment_true[0].transpose(),
+                    (turn * base.gravity_alignment_true[1]).transpose()),
+        UnalignPose(base.ground_truth.cam3_from_cam1, base.gravity_alignment_true[0].transpose(),
+                    base.gravity_alignment_true[2].transpose())};
+    const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(truth_aligned, solutions[0]);
+    EXPECT_LT(e.MaxRotationDeg(), 1e-8) << yaw;
+    EXPECT_LT(e.MaxTranslationDeg(), 1e-8) << yaw;
+  }
+}
+
+TEST(Trifocal4pt, MisuseThrows) {
+  std::mt19937_64 rng(8);
+  const SyntheticScene scene = GenerateSyntheticScene(SyntheticSceneOptions(), &rng);
+  const auto& x = scene.rays;
+  const Eigen::Vector3d g = Eigen::Vector3d::UnitY();
+  std::vector<ThreeViewPose> solutions;
+  auto bad = [&](std::vector<Eigen::Vector3d> a, std::vector<Eigen::Vector3d> b,
+                 std::vector<Eigen::Vector3d> c) {
+    EXPECT_THROW(SolveTrifocal4pt(a, b, c, &solutions), std::invalid_argument);
+    EXPECT_THROW(SolveTrifocal4pt(a, b, c, g, g, g, &solutions), std::invalid_argument);
+  };
+  bad({x[0].begin(), x[0].begin() + 3}, {x[1].begin(), x[1].begin() + 3},
+      {x[2].begin(), x[2].begin() + 3});                                   // too few
+  bad(x[0], {x[1].begin(), x[1].begin() + 3}, x[2]);                       // sizes differ
+  bad({}, {}, {});                                                         // empty
+  auto with = [&](int view, const Eigen::Vector3d& value) {
+    std::array<std::vector<Eigen::Vector3d>, 3> rays = x;
+    rays[view][2] = value;
+    return rays;
+  };
+  for (const Eigen::Vector3d& value :
+       {Eigen::Vector3d(NAN, 0, 1), Eigen::Vector3d(0, INFINITY, 1), Eigen::Vector3d::Zero().eval()}) {
+    for (int view = 0; view < 3; ++view) {
+      const auto rays = with(view, value);
+      bad(rays[0], rays[1], rays[2]);
+    }
+  }
+  for (const Eigen::Vector3d& gravity : {Eigen::Vector3d::Zero().eval(), Eigen::Vector3d(0, NAN, 0)}) {
+    EXPECT_THROW(SolveTrifocal4pt(x[0], x[1], x[2], g, gravity, g, &solutions),
+                 std::invalid_argument);
+  }
+  EXPECT_THROW(SolveTrifocal4pt(x[0], x[1], x[2], nullptr), std::invalid_argument);
+  try {
+    SolveTrifocal4pt(x[0], {x[1].begin(), x[1].begin() + 3}, x[2], &solutions);
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("differ in size"), std::string::npos) << error.what();
+  }
+}
+
+TEST(Trifocal4pt, DegenerateInputGivesNoSolutionNotNaN) {
+  std::mt19937_64 rng(9);
+  const SyntheticScene scene = GenerateSyntheticScene(SyntheticSceneOptions(), &rng);
+  std::vector<ThreeViewPose> solutions;
+  // Identical views (zero baseline): no translation is observable.
+  const int identical = SolveTrifocal4pt(scene.rays[0], scene.rays[0], scene.rays[0], &solutions);
+  for (const ThreeViewPose& pose : solutions) EXPECT_TRUE(pose.IsFinite());
+  EXPECT_LE(identical, 1);
+  // All four triplets the same point.
+  const std::vector<Eigen::Vector3d> same1(4, scene.rays[0][0]), same2(4, scene.rays[1][0]),
+      same3(4, scene.rays[2][0]);
+  SolveTrifocal4pt(same1, same2, same3, &solutions);
+  for (const ThreeViewPose& pose : solutions) EXPECT_TRUE(pose.IsFinite());
+}
+
+}  // namespace
+}  // namespace trigrav

@@ -74,7 +74,9 @@ Eigen::Vector3d NullVector3(const Eigen::Matrix3d& M) {
   if (!(largest > 0.0)) return Eigen::Vector3d::Zero();
   Eigen::Vector3d x = adjugate.col(best).normalized();
   // Inverse iteration: (A^T A)^-1 is proportional to adj(A) adj(A)^T.
+  // Each step shrinks the error by (sigma_3 / sigma_2)^2; stop at convergence or at the rounding floor.
   constexpr int kMaxIterations = 50;
+  double previous_change = std::numeric_limits<double>::infinity();
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
     Eigen::Vector3d next = adjugate * (adjugate.transpose() * x);
     const double norm = next.norm();
@@ -83,7 +85,8 @@ Eigen::Vector3d NullVector3(const Eigen::Matrix3d& M) {
     if (next.dot(x) < 0.0) next = -next;
     const double change = (next - x).squaredNorm();
     x = next;
-    if (change < 1e-30) break;
+    if (change < 1e-30 || (change < 1e-20 && change > 0.25 * previous_change)) break;
+    previous_change = change;
   }
   return x;
 }
@@ -105,6 +108,70 @@ Eigen::Matrix<double, 4, 6> TranslationRows(const Eigen::Vector3d& x1, const Eig
     }
   }
   return rows;
+}
+
+namespace {
+
+// d R_y(theta) / d theta.
+Eigen::Matrix3d RotationAboutYDerivative(double theta) {
+  const double c = std::cos(theta), s = std::sin(theta);
+  Eigen::Matrix3d D;
+  D << -s, 0.0, c, 0.0, 0.0, 0.0, -c, 0.0, -s;
+  return D;
+}
+
+}  // namespace
+
+void RefineYawsAndCenters(const std::vector<Eigen::Vector3d>& x1,
+                          const std::vector<Eigen::Vector3d>& x2,
+                          const std::vector<Eigen::Vector3d>& x3, double* theta2, double* theta3,
+                          Eigen::Vector3d* center2, Eigen::Vector3d* center3) {
+  const Eigen::Matrix3d R2 = RotationAboutY(*theta2), dR2 = RotationAboutYDerivative(*theta2);
+  const Eigen::Matrix3d R3 = RotationAboutY(*theta3), dR3 = RotationAboutYDerivative(*theta3);
+  Eigen::Matrix<double, 6, 1> centers;
+  centers << *center2, *center3;
+  const double norm = centers.norm();
+  if (!(norm > 0.0)) return;
+  centers /= norm;
+  const Eigen::Vector3d R2c2 = R2 * centers.head<3>(), dR2c2 = dR2 * centers.head<3>();
+  const Eigen::Vector3d R3c3 = R3 * centers.tail<3>(), dR3c3 = dR3 * centers.tail<3>();
+  // Normal equations of the 4N x 8 Jacobian [dr/dtheta2, dr/dtheta3, F], accumulated per triplet.
+  Eigen::Matrix<double, 8, 8> JtJ = Eigen::Matrix<double, 8, 8>::Zero();
+  Eigen::Matrix<double, 8, 1> Jtr = Eigen::Matrix<double, 8, 1>::Zero();
+  for (std::size_t n = 0; n < x1.size(); ++n) {
+    Eigen::Vector3d p[2], r[2];
+    PerpendicularBasis(x2[n], &p[0], &p[1]);
+    PerpendicularBasis(x3[n], &r[0], &r[1]);
+    // Row (a, b): (z . r_b) (p_a x x2) . R2 c2 + (p_a . u) (r_b x x3) . R3 c3, u = x2 x R2 x1,
+    // z = R3 x1 x x3 (math note 4.1); u and z carry the cross-dependence on the other yaw.
+    const Eigen::Vector3d u = x2[n].cross(R2 * x1[n]), du = x2[n].cross(dR2 * x1[n]);
+    const Eigen::Vector3d z = (R3 * x1[n]).cross(x3[n]), dz = (dR3 * x1[n]).cross(x3[n]);
+    for (int a = 0; a < 2; ++a) {
+      const Eigen::Vector3d left = p[a].cross(x2[n]);
+      for (int b = 0; b < 2; ++b) {
+        const Eigen::Vector3d right = r[b].cross(x3[n]);
+        Eigen::Matrix<double, 8, 1> row;
+        row[0] = z.dot(r[b]) * left.dot(dR2c2) + p[a].dot(du) * right.dot(R3c3);
+        row[1] = dz.dot(r[b]) * left.dot(R2c2) + p[a].dot(u) * right.dot(dR3c3);
+        row.segment<3>(2) = z.dot(r[b]) * R2.transpose() * left;
+        row.segment<3>(5) = p[a].dot(u) * R3.transpose() * right;
+        const double residual = row.tail<6>().dot(centers);
+        JtJ.noalias() += row * row.transpose();
+        Jtr += residual * row;
+      }
+    }
+  }
+  // Gauge: the step keeps c . delta_c = 0, weighted like an average row.
+  Eigen::Matrix<double, 8, 1> gauge = Eigen::Matrix<double, 8, 1>::Zero();
+  gauge.tail<6>() = centers;
+  JtJ.noalias() += (JtJ.trace() / 8.0) * gauge * gauge.transpose();
+  const Eigen::Matrix<double, 8, 1> step = -JtJ.ldlt().solve(Jtr);
+  if (!step.allFinite()) return;
+  *theta2 += step[0];
+  *theta3 += step[1];
+  centers += step.tail<6>();
+  *center2 = norm * centers.head<3>();
+  *center3 = norm * centers.tail<3>();
 }
 
 bool OrientScaleAndMakePose(const std::vector<Eigen::Vector3d>& x1,

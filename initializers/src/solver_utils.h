@@ -3,6 +3,8 @@
 #ifndef TRIGRAV_INITIALIZERS_SRC_SOLVER_UTILS_H_
 #define TRIGRAV_INITIALIZERS_SRC_SOLVER_UTILS_H_
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -47,7 +49,9 @@ Eigen::Matrix<double, N, 1> SmallestRightSingularVectorOfTriangular(
   Eigen::Matrix<double, N, 1> x = Eigen::Matrix<double, N, 1>::Unit(N - 1);
   R_floor.template triangularView<Eigen::Upper>().solveInPlace(x);
   x.normalize();
+  // Stops at convergence or once rounding noise keeps the step from shrinking.
   constexpr int kMaxIterations = 100;
+  double previous_change = std::numeric_limits<double>::infinity();
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
     Eigen::Matrix<double, N, 1> next = x;
     R_floor.transpose().template triangularView<Eigen::Lower>().solveInPlace(next);
@@ -56,22 +60,73 @@ Eigen::Matrix<double, N, 1> SmallestRightSingularVectorOfTriangular(
     if (next.dot(x) < 0.0) next = -next;
     const double change = (next - x).squaredNorm();
     x = next;
-    if (change < 1e-30) break;
+    if (change < 1e-30 || (change < 1e-20 && change > 0.25 * previous_change)) break;
+    previous_change = change;
   }
   return x;
 }
 
-// Upper-triangular C x C factor R of a tall matrix (R^T R = A^T A), padded with zero rows when A has
-// fewer rows than columns.
+// Unit null vector of an (C-1) x C matrix of full row rank, by Gaussian elimination with partial
+// pivoting and back substitution with x_C = 1: half the flops of a QR for the exactly determined
+// minimal systems. A pivot below eps * max|entry| is raised to that floor (as in inverse iteration),
+// so the result stays finite; zero vector only for an all-zero matrix.
+template <int C>
+Eigen::Matrix<double, C, 1> NullVectorOfWideMatrix(const Eigen::Matrix<double, C - 1, C>& A) {
+  constexpr int R = C - 1;
+  // Row operations span the full fixed-size row (the zeros left of the pivot included): more flops
+  // than trimmed rows, but unrolled and vectorised, which is faster at this size.
+  using Row = Eigen::Matrix<double, 1, C>;
+  std::array<Row, R> U;
+  for (int i = 0; i < R; ++i) U[i] = A.row(i);
+  const double floor = std::numeric_limits<double>::epsilon() * A.cwiseAbs().maxCoeff();
+  if (!(floor > 0.0)) return Eigen::Matrix<double, C, 1>::Zero();
+  for (int k = 0; k < R; ++k) {
+    int pivot = k;
+    for (int i = k + 1; i < R; ++i) {
+      if (std::abs(U[i][k]) > std::abs(U[pivot][k])) pivot = i;
+    }
+    std::swap(U[k], U[pivot]);
+    if (std::abs(U[k][k]) < floor) U[k][k] = U[k][k] < 0.0 ? -floor : floor;
+    const double inverse_pivot = 1.0 / U[k][k];
+    for (int i = k + 1; i < R; ++i) U[i] -= (U[i][k] * inverse_pivot) * U[k];
+  }
+  Eigen::Matrix<double, C, 1> x = Eigen::Matrix<double, C, 1>::Zero();
+  x[C - 1] = 1.0;
+  for (int k = R - 1; k >= 0; --k) x[k] = -U[k].dot(x.transpose()) / U[k][k];
+  return x.normalized();
+}
+
+// Upper-triangular C x C factor R of a matrix with C columns (R^T R = A^T A), padded with zero rows
+// when A has fewer rows than columns. Unblocked Householder triangularisation in place: for the small
+// fixed-size systems of the solvers it is several times faster than Eigen's blocked HouseholderQR and
+// allocates nothing.
 template <typename Derived>
 Eigen::Matrix<double, Derived::ColsAtCompileTime, Derived::ColsAtCompileTime> TriangularFactor(
-    const Eigen::MatrixBase<Derived>& A) {
+    const Eigen::MatrixBase<Derived>& A_in) {
   constexpr int C = Derived::ColsAtCompileTime;
-  using PlainMatrix = typename Derived::PlainObject;
-  const Eigen::HouseholderQR<PlainMatrix> qr(A.derived());
+  using Column = Eigen::Matrix<double, Derived::RowsAtCompileTime, 1>;
+  typename Derived::PlainObject A = A_in;
+  const Eigen::Index m = A.rows();
+  const Eigen::Index steps = std::min<Eigen::Index>(m, C);
+  for (Eigen::Index j = 0; j < steps; ++j) {
+    // Reflector H = I - 2 v v^T / (v^T v), v = x - alpha e_j with x = column j below row j, mapping x
+    // to alpha e_j. v is kept at full column length (zeros above j) so the updates are fixed-size.
+    Column v = A.col(j);
+    v.head(j).setZero();
+    const double x0 = v[j];
+    const double norm = v.norm();
+    const double alpha = x0 <= 0.0 ? norm : -norm;
+    v[j] = x0 - alpha;
+    const double v_squared = v.squaredNorm();
+    if (v_squared > 0.0) {
+      const double scale = 2.0 / v_squared;
+      for (Eigen::Index k = j + 1; k < C; ++k) A.col(k) -= (scale * v.dot(A.col(k))) * v;
+    }
+    A.col(j).tail(m - j).setZero();
+    A(j, j) = v_squared > 0.0 ? alpha : x0;
+  }
   Eigen::Matrix<double, C, C> R = Eigen::Matrix<double, C, C>::Zero();
-  const Eigen::Index rows = std::min<Eigen::Index>(A.rows(), C);
-  R.topRows(rows) = qr.matrixQR().topRows(rows).template triangularView<Eigen::Upper>();
+  R.topRows(steps) = A.topRows(steps);
   return R;
 }
 
@@ -99,6 +154,16 @@ inline void PerpendicularBasis(const Eigen::Vector3d& x, Eigen::Vector3d* p1, Ei
 Eigen::Matrix<double, 4, 6> TranslationRows(const Eigen::Vector3d& x1, const Eigen::Vector3d& x2,
                                             const Eigen::Vector3d& x3, const Eigen::Matrix3d& R2,
                                             const Eigen::Matrix3d& R3);
+
+// One Gauss-Newton step on the incidence residuals r = F(theta2, theta3) (c2; c3) of all triplets (the
+// rows of TranslationRows), jointly over the yaws and the centres, with |(c2; c3)| held fixed to first
+// order. Noise-free it converges quadratically to the exact pose, removing the rounding tail of the
+// linear solvers (whose yaw error the translation solve amplifies); with noise it moves the estimate to
+// the nearest minimum of the algebraic residual. Leaves the inputs unchanged if the step is not finite.
+void RefineYawsAndCenters(const std::vector<Eigen::Vector3d>& x1,
+                          const std::vector<Eigen::Vector3d>& x2,
+                          const std::vector<Eigen::Vector3d>& x3, double* theta2, double* theta3,
+                          Eigen::Vector3d* center2, Eigen::Vector3d* center3);
 
 // Finishes an aligned three-view estimate known up to a common factor of the centres: flips the sign
 // of (c2, c3) if most view-1 depths of pairs (1,2) and (1,3) are negative, scales to |c2| = 1 and

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Cholesky>
 #include <Eigen/QR>
 
 #include "solver_utils.h"
@@ -13,7 +14,6 @@ namespace {
 
 using Vector17d = Eigen::Matrix<double, 17, 1>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
-using Matrix17d = Eigen::Matrix<double, 17, 17>;
 using TensorSlices = std::array<Eigen::Matrix3d, 3>;
 
 constexpr int kMinTriplets = 4;
@@ -39,12 +39,17 @@ Eigen::Matrix<double, 4, 17> IncidenceRows(const Eigen::Vector3d& x1, const Eige
   Eigen::Vector3d p[2], r[2];
   internal::PerpendicularBasis(x2, &p[0], &p[1]);
   internal::PerpendicularBasis(x3, &r[0], &r[1]);
-  Eigen::Matrix<double, 4, 17> rows = Eigen::Matrix<double, 4, 17>::Zero();
+  Eigen::Matrix<double, 4, 17> rows;
   for (int a = 0; a < 2; ++a) {
     for (int b = 0; b < 2; ++b) {
+      const Eigen::Matrix3d outer = p[a] * r[b].transpose();
+      double row[17] = {};
+      // Unrolled, the table indices become constants (about 4x fewer instructions).
+#pragma GCC unroll 32
       for (const TensorEntry& e : kTensorEntries) {
-        rows(2 * a + b, e.q) += e.sign * x1[e.slice] * p[a][e.row] * r[b][e.col];
+        row[e.q] += e.sign * x1[e.slice] * outer(e.row, e.col);
       }
+      rows.row(2 * a + b) = Eigen::Map<const Eigen::Matrix<double, 1, 17>>(row);
     }
   }
   return rows;
@@ -56,27 +61,32 @@ TensorSlices TensorFromQ(const Vector17d& q) {
   return T;
 }
 
-// q = E a for the constrained tensor with epipoles e' = e, e'' = f (eqs f2-f6, math note 3.3 step 2).
-Eigen::Matrix<double, 17, 6> ConstrainedTensorBasis(const Eigen::Vector3d& e, const Eigen::Vector3d& f) {
-  Eigen::Matrix<double, 17, 6> E = Eigen::Matrix<double, 17, 6>::Zero();
-  E(0, 0) = f[0];  E(0, 3) = -e[0];   // Q1  = f1 a1 - e1 a4
-  E(1, 0) = f[1];                      // Q2  = f2 a1
-  E(2, 0) = f[2];  E(2, 4) = e[0];    // Q3  = f3 a1 + e1 a5
-  E(3, 3) = -e[1];                     // Q4  = -e2 a4
-  E(4, 4) = e[1];                      // Q5  = e2 a5
-  E(5, 1) = -f[0]; E(5, 3) = -e[2];   // Q6  = -f1 a2 - e3 a4
-  E(6, 1) = -f[1];                     // Q7  = -f2 a2
-  E(7, 1) = -f[2]; E(7, 4) = e[2];    // Q8  = -f3 a2 + e3 a5
-  E(8, 5) = -e[0];                     // Q9  = -e1 a6
-  E(9, 2) = f[0];                      // Q10 = f1 a3
-  E(10, 2) = f[1]; E(10, 5) = -e[1];  // Q11 = f2 a3 - e2 a6
-  E(11, 2) = f[2];                     // Q12 = f3 a3
-  E(12, 5) = -e[2];                    // Q13 = -e3 a6
-  E(13, 1) = f[0]; E(13, 4) = -e[0];  // Q14 = f1 a2 - e1 a5
-  E(14, 1) = f[2]; E(14, 3) = -e[0];  // Q15 = f3 a2 - e1 a4
-  E(15, 0) = f[0]; E(15, 4) = -e[2];  // Q16 = f1 a1 - e3 a5
-  E(16, 0) = f[2]; E(16, 3) = -e[2];  // Q17 = f3 a1 - e3 a4
-  return E;
+// q = E a for the constrained tensor with epipoles e' = e, e'' = f (eqs f2-f6, math note 3.3 step 2):
+// the 26 non-zeros of the 17 x 6 matrix E, as (row of q, column of a, value).
+struct BasisEntry {
+  int q, a;
+  double value;
+};
+std::array<BasisEntry, 26> ConstrainedTensorBasis(const Eigen::Vector3d& e, const Eigen::Vector3d& f) {
+  return {{
+      {0, 0, f[0]},   {0, 3, -e[0]},   // Q1  = f1 a1 - e1 a4
+      {1, 0, f[1]},                     // Q2  = f2 a1
+      {2, 0, f[2]},   {2, 4, e[0]},    // Q3  = f3 a1 + e1 a5
+      {3, 3, -e[1]},                    // Q4  = -e2 a4
+      {4, 4, e[1]},                     // Q5  = e2 a5
+      {5, 1, -f[0]},  {5, 3, -e[2]},   // Q6  = -f1 a2 - e3 a4
+      {6, 1, -f[1]},                    // Q7  = -f2 a2
+      {7, 1, -f[2]},  {7, 4, e[2]},    // Q8  = -f3 a2 + e3 a5
+      {8, 5, -e[0]},                    // Q9  = -e1 a6
+      {9, 2, f[0]},                     // Q10 = f1 a3
+      {10, 2, f[1]},  {10, 5, -e[1]},  // Q11 = f2 a3 - e2 a6
+      {11, 2, f[2]},                    // Q12 = f3 a3
+      {12, 5, -e[2]},                   // Q13 = -e3 a6
+      {13, 1, f[0]},  {13, 4, -e[0]},  // Q14 = f1 a2 - e1 a5
+      {14, 1, f[2]},  {14, 3, -e[0]},  // Q15 = f3 a2 - e1 a4
+      {15, 0, f[0]},  {15, 4, -e[2]},  // Q16 = f1 a1 - e3 a5
+      {16, 0, f[2]},  {16, 3, -e[2]},  // Q17 = f3 a1 - e3 a4
+  }};
 }
 
 // Yaws and centres (up to a common factor) of an aligned estimate.
@@ -108,20 +118,32 @@ bool EpipolesFromQ(const Vector17d& q, Eigen::Vector3d* epipole2, Eigen::Vector3
 }
 
 // Constraint enforcement for given epipoles (eqs f2-f7) and the pose read from a (math note 3.3 step
-// 4). R_A is the triangular factor of the incidence system. False if the basis E is degenerate.
-bool EnforceConstraints(const Matrix17d& R_A, const Eigen::Vector3d& epipole2,
+// 4). M is the incidence matrix A itself (minimal case) or its triangular factor R_A (|A y| = |R_A y|).
+// False if the basis E is degenerate.
+template <typename IncidenceMatrix>
+bool EnforceConstraints(const IncidenceMatrix& M, const Eigen::Vector3d& epipole2,
                         const Eigen::Vector3d& epipole3, AlignedEstimate* estimate) {
-  // min |A E a| s.t. |E a| = 1 with E = Q_E R_E: b = smallest right singular vector of A Q_E,
-  // a = R_E^-1 b; |A Q_E b| = |R_A Q_E b|.
-  const Eigen::HouseholderQR<Eigen::Matrix<double, 17, 6>> qr_E(
-      ConstrainedTensorBasis(epipole2, epipole3));
-  const Eigen::Matrix<double, 6, 6> R_E = qr_E.matrixQR().topRows<6>().triangularView<Eigen::Upper>();
+  // min |M E a| s.t. |E a| = 1 (eq. f7). With E^T E = R_E^T R_E (Cholesky; E is well conditioned
+  // unless an epipole degenerates) and b = R_E a: b = smallest right singular vector of M E R_E^-1,
+  // then a = R_E^-1 b. E is used through its non-zeros only.
+  const std::array<BasisEntry, 26> E = ConstrainedTensorBasis(epipole2, epipole3);
+  Eigen::Matrix<double, 17, 6> E_dense = Eigen::Matrix<double, 17, 6>::Zero();
+  Eigen::Matrix<double, IncidenceMatrix::RowsAtCompileTime, 6> ME =
+      Eigen::Matrix<double, IncidenceMatrix::RowsAtCompileTime, 6>::Zero(M.rows(), 6);
+  for (const BasisEntry& entry : E) {
+    E_dense(entry.q, entry.a) = entry.value;
+    ME.col(entry.a) += entry.value * M.col(entry.q);
+  }
+  const Eigen::LLT<Eigen::Matrix<double, 6, 6>> cholesky(E_dense.transpose().lazyProduct(E_dense));
+  if (cholesky.info() != Eigen::Success) return false;
+  const Eigen::Matrix<double, 6, 6> R_E = cholesky.matrixU();
   const double largest = R_E.diagonal().cwiseAbs().maxCoeff();
-  if (!(R_E.diagonal().cwiseAbs().minCoeff() > 1e-10 * largest)) return false;
-  const Eigen::Matrix<double, 17, 6> Q_E =
-      qr_E.householderQ() * Eigen::Matrix<double, 17, 6>::Identity();
-  const Eigen::Matrix<double, 17, 6> AQ = R_A.triangularView<Eigen::Upper>() * Q_E;
-  Vector6d a = internal::SmallestRightSingularVectorOfTriangular<6>(internal::TriangularFactor(AQ));
+  if (!(R_E.diagonal().cwiseAbs().minCoeff() > 1e-8 * largest)) return false;
+  for (int j = 0; j < 6; ++j) {  // ME <- ME R_E^-1, column by column
+    for (int i = 0; i < j; ++i) ME.col(j) -= R_E(i, j) * ME.col(i);
+    ME.col(j) /= R_E(j, j);
+  }
+  Vector6d a = internal::SmallestRightSingularVectorOfTriangular<6>(internal::TriangularFactor(ME));
   R_E.triangularView<Eigen::Upper>().solveInPlace(a);
 
   // a = lambda (beta c2, beta s2, beta, alpha c3, alpha s3, alpha), e' = -R2 c2 / alpha,
@@ -190,6 +212,7 @@ void ResolveCenters(const std::vector<Eigen::Vector3d>& x1, const std::vector<Ei
   for (std::size_t n = 0; n < x1.size(); ++n) {
     F.template middleRows<4>(4 * n) = internal::TranslationRows(x1[n], x2[n], x3[n], R2, R3);
   }
+
   const Vector6d centers =
       internal::SmallestRightSingularVectorOfTriangular<6>(internal::TriangularFactor(F));
   // Keep the sign of the previous centres so the cheirality vote starts from a consistent guess.
@@ -208,8 +231,17 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen
     A.template middleRows<4>(4 * n) = IncidenceRows(x1[n], x2[n], x3[n]);
   }
   if (!A.allFinite()) return 0;
-  const Matrix17d R_A = internal::TriangularFactor(A);
-  const Vector17d q = internal::SmallestRightSingularVectorOfTriangular<17>(R_A);
+  // q: exact null vector of the 16 x 17 system in the minimal case, least-squares otherwise.
+  Vector17d q;
+  Eigen::Matrix<double, Rows == 16 ? 16 : 17, 17> M;
+  if constexpr (Rows == 16) {
+    M = A;
+    q = internal::NullVectorOfWideMatrix<17>(A);
+  } else {
+    M = internal::TriangularFactor(A);
+    q = internal::SmallestRightSingularVectorOfTriangular<17>(M);
+  }
+  if (q.isZero()) return 0;
 
   AlignedEstimate estimate;
   bool ok = false;
@@ -217,7 +249,7 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen
   switch (options.recovery) {
     case Trifocal4ptRecovery::kEnforced:
       ok = EpipolesFromQ(q, &epipole2, &epipole3) &&
-           EnforceConstraints(R_A, epipole2, epipole3, &estimate);
+           EnforceConstraints(M, epipole2, epipole3, &estimate);
       break;
     case Trifocal4ptRecovery::kLeastSquares:
       ok = EstimateLeastSquares(q, &estimate);
@@ -235,11 +267,16 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen
       epipole2 = (RotationAboutY(estimate.theta2) * estimate.center2).normalized();
       epipole3 = (RotationAboutY(estimate.theta3) * estimate.center3).normalized();
       if (!epipole2.allFinite() || !epipole3.allFinite() ||
-          !EnforceConstraints(R_A, epipole2, epipole3, &estimate)) {
+          !EnforceConstraints(M, epipole2, epipole3, &estimate)) {
         return 0;
       }
       if (options.resolve_translations) ResolveCenters<kFixedRows>(x1, x2, x3, &estimate);
     }
+  }
+
+  for (int iteration = 0; iteration < options.polish_iterations; ++iteration) {
+    internal::RefineYawsAndCenters(x1, x2, x3, &estimate.theta2, &estimate.theta3, &estimate.center2,
+                                   &estimate.center3);
   }
 
   ThreeViewPose pose;

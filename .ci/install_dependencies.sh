@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs trigrav's build and test dependencies from Debian 12 packages, as root. Packages already
+# present are skipped; apt-get update runs first whenever something has to be installed.
+set -euo pipefail
+packages=(
+  build-essential cmake
+  libeigen3-dev libceres-dev libsuitesparse-dev libgoogle-glog-dev libgflags-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+missing=()
+for package in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q 'install ok installed' ||
+    missing+=("$package")
+done
+if ((${#missing[@]})); then
+  echo "installing: ${missing[*]}"
+  apt-get update
+  DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
+else
+  echo "all dependencies present"
+fi

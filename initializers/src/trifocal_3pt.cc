@@ -1,0 +1,469 @@
+#include "trigrav/initializers/trifocal_3pt.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "polynomial.h"
+#include "solver_utils.h"
+
+namespace trigrav {
+namespace {
+
+using Rays = std::vector<Eigen::Vector3d>;
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+constexpr std::size_t kNumTriplets = 3;
+
+// Offsets theta_0 of the Cayley parameter t = tan((theta - theta_0)/2), tried in this order. The
+// parameterisation misses theta = theta_0 + pi, where the leading coefficient of the polynomial in t
+// vanishes; 0 is the paper's choice, the others take over when a root lies at or near pi (see
+// ChooseOffset). The polynomials are trigonometric of degree <= 4 in theta, with at most 8 zeros in a
+// period, so one of the 9 offsets has a leading coefficient well away from zero.
+struct Offset {
+  double c, s;    // cos and sin of theta_0
+  double c2, s2;  // cos and sin of 2 theta_0
+};
+constexpr double kSqrtHalf = 0.70710678118654752;  // cos(pi/4)
+constexpr double kCos8 = 0.92387953251128676;      // cos(pi/8)
+constexpr double kSin8 = 0.38268343236508977;      // sin(pi/8)
+constexpr std::array<Offset, 9> kOffsets = {{
+    {1.0, 0.0, 1.0, 0.0},                    // 0
+    {0.0, 1.0, -1.0, 0.0},                   // pi/2
+    {0.0, -1.0, -1.0, 0.0},                  // -pi/2
+    {kSqrtHalf, kSqrtHalf, 0.0, 1.0},        // pi/4
+    {kSqrtHalf, -kSqrtHalf, 0.0, -1.0},      // -pi/4
+    {-kSqrtHalf, kSqrtHalf, 0.0, -1.0},      // 3pi/4
+    {-kSqrtHalf, -kSqrtHalf, 0.0, 1.0},      // -3pi/4
+    {kCos8, kSin8, kSqrtHalf, kSqrtHalf},    // pi/8
+    {kCos8, -kSin8, kSqrtHalf, -kSqrtHalf},  // -pi/8
+}};
+// The leading coefficient counts as tiny below this fraction of the largest coefficient.
+constexpr double kMinRelativeLeading = 1e-2;
+// Decoupled solver: at most this many guarded Newton steps polish each quartic root (usually 1-2 are
+// taken; near-double roots need more).
+constexpr int kQuarticNewtonSteps = 6;
+// Decoupled solver: a complex pair of quartic roots with |Im t| below this also gives a candidate, at
+// its real part (about where the epipolar constraints of the pair come closest to consistent). Noise
+// turns near-double real roots, often the true one among them, into such pairs. On the note's scenes
+// at 1 px this cuts the scenes without any candidate from 5.3 % to 0.9 % and the median rotation error
+// of the best-ranked candidate from 1.15 to 0.95 deg, for 0.2 more candidates per call noise-free
+// (0.6 at 1 px). Exact roots are unaffected. Not in the note.
+constexpr double kMaxImaginaryPart = 0.1;
+
+// Sorts the first `count` entries of a small array by key, ascending (insertion sort, no heap).
+template <typename T, std::size_t N, typename Key>
+void SortByKey(int count, Key&& key, std::array<T, N>* items) {
+  for (int i = 1; i < count; ++i) {
+    const T item = (*items)[i];
+    int j = i;
+    for (; j > 0 && key(item) < key((*items)[j - 1]); --j) (*items)[j] = (*items)[j - 1];
+    (*items)[j] = item;
+  }
+}
+
+// A yaw as its cosine and sine (no trigonometric calls in the hot path).
+struct Yaw {
+  double c = 1.0, s = 0.0;
+  // theta = theta_0 + 2 atan(t) with cos/sin from the half-angle formulas.
+  static Yaw FromCayley(double t, const Offset& offset) {
+    const double denominator = 1.0 + t * t;
+    const double c_phi = (1.0 - t * t) / denominator, s_phi = 2.0 * t / denominator;
+    return {c_phi * offset.c - s_phi * offset.s, s_phi * offset.c + c_phi * offset.s};
+  }
+  double Angle() const { return std::atan2(s, c); }
+  Eigen::Matrix3d Matrix() const {
+    Eigen::Matrix3d R;
+    R << c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c;
+    return R;
+  }
+};
+
+// R_y(theta) x = cos(theta) A + sin(theta) B + C with A = (x, 0, z), B = (z, 0, -x), C = (0, y, 0)
+// (math note section 1).
+struct TrigLinear {
+  Eigen::Vector3d A, B, C;
+  explicit TrigLinear(const Eigen::Vector3d& x)
+      : A(x.x(), 0.0, x.z()), B(x.z(), 0.0, -x.x()), C(0.0, x.y(), 0.0) {}
+  Eigen::Vector3d Rotated(const Yaw& yaw) const { return yaw.c * A + yaw.s * B + C; }
+};
+
+// Picks the Cayley offset: the first of kOffsets whose leading coefficient (the value of the
+// trigonometric polynomial at theta_0 + pi, evaluated by `leading`) is not tiny relative to `scale`,
+// else the one with the largest leading coefficient.
+template <typename Leading>
+const Offset& ChooseOffset(double scale, Leading&& leading) {
+  const Offset* best_offset = &kOffsets[0];
+  double best = -1.0;
+  for (const Offset& offset : kOffsets) {
+    const double value = std::abs(leading(offset));
+    if (value >= kMinRelativeLeading * scale) return offset;
+    if (value > best) {
+      best = value;
+      best_offset = &offset;
+    }
+  }
+  return *best_offset;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Decoupled solver (math note 4.4).
+
+// One real root of the upright 2-view problem of pair (1,k) that passes cheirality.
+struct PairRoot {
+  Yaw yaw;
+  Eigen::Vector3d epipole;  // R_k c_k, unit: the centre of camera k in camera-k axes, negated t
+  Eigen::Vector3d depth;    // view-1 depths lambda_n of the 3 points, |c_k| = 1
+};
+
+// det[m_1; m_2; m_3] at 5 equally spaced yaws, m_n(theta) = (R_y(theta) x1_n) x xk_n = cos P_n +
+// sin Q_n + S_n, is a trigonometric polynomial of degree 2 (the degree-6 polynomial in tan(theta/2)
+// has the factor 1 + tan^2, note 4.4), D = a0 + a1 cos + b1 sin + a2 cos 2theta + b2 sin 2theta; a
+// 5-point DFT gives its coefficients exactly.
+struct TrigQuadratic {
+  double a0 = 0.0, a1 = 0.0, b1 = 0.0, a2 = 0.0, b2 = 0.0;
+  // Value at theta_0 + pi, the leading coefficient of the quartic in tan((theta - theta_0)/2).
+  double AtOffsetPlusPi(const Offset& o) const {
+    return a0 - a1 * o.c - b1 * o.s + a2 * o.c2 + b2 * o.s2;
+  }
+  double Scale() const {
+    return std::max({std::abs(a0), std::abs(a1), std::abs(b1), std::abs(a2), std::abs(b2)});
+  }
+  // q(t) = (1 + t^2)^2 D(theta_0 + 2 atan t), lowest degree first.
+  std::array<double, 5> Quartic(const Offset& o) const {
+    const double A1 = a1 * o.c + b1 * o.s, B1 = b1 * o.c - a1 * o.s;
+    const double A2 = a2 * o.c2 + b2 * o.s2, B2 = b2 * o.c2 - a2 * o.s2;
+    return {a0 + A1 + A2, 2 * B1 + 4 * B2, 2 * a0 - 6 * A2, 2 * B1 - 4 * B2, a0 - A1 + A2};
+  }
+};
+
+int SolveUprightPair(const Rays& x1, const Rays& xk, std::array<PairRoot, 4>* roots) {
+  std::array<Eigen::Vector3d, 3> P, Q, S;
+  std::array<TrigLinear, 3> rotated1 = {TrigLinear(x1[0]), TrigLinear(x1[1]), TrigLinear(x1[2])};
+  for (std::size_t n = 0; n < kNumTriplets; ++n) {
+    P[n] = rotated1[n].A.cross(xk[n]);
+    Q[n] = rotated1[n].B.cross(xk[n]);
+    S[n] = rotated1[n].C.cross(xk[n]);
+  }
+  // cos and sin of 2 pi j / 5.
+  static constexpr double kC[5] = {1.0, 0.30901699437494742, -0.80901699437494742,
+                                   -0.80901699437494742, 0.30901699437494742};
+  static constexpr double kS[5] = {0.0, 0.95105651629515357, 0.58778525229247313,
+                                   -0.58778525229247313, -0.95105651629515357};
+  TrigQuadratic D;
+  for (int j = 0; j < 5; ++j) {
+    const Eigen::Vector3d m0 = kC[j] * P[0] + kS[j] * Q[0] + S[0];
+    const Eigen::Vector3d m1 = kC[j] * P[1] + kS[j] * Q[1] + S[1];
+    const Eigen::Vector3d m2 = kC[j] * P[2] + kS[j] * Q[2] + S[2];
+    const double value = m0.dot(m1.cross(m2));
+    const int j2 = (2 * j) % 5;  // 2 theta_j = theta_{2j mod 5}
+    D.a0 += value;
+    D.a1 += value * kC[j];
+    D.b1 += value * kS[j];
+    D.a2 += value * kC[j2];
+    D.b2 += value * kS[j2];
+  }
+  D.a0 *= 0.2;
+  D.a1 *= 0.4;
+  D.b1 *= 0.4;
+  D.a2 *= 0.4;
+  D.b2 *= 0.4;
+  const double scale = D.Scale();
+  if (!(scale > 0.0) || !std::isfinite(scale)) return 0;
+
+  const Offset& offset =
+      ChooseOffset(scale, [&D](const Offset& theta0) { return D.AtOffsetPlusPi(theta0); });
+  std::array<double, 4> t;
+  const int num_t =
+      internal::SolveQuarticReal(D.Quartic(offset), &t, kQuarticNewtonSteps, kMaxImaginaryPart);
+
+  int count = 0;
+  for (int i = 0; i < num_t; ++i) {
+    PairRoot& root = (*roots)[count];
+    root.yaw = Yaw::FromCayley(t[i], offset);
+    // The epipole R_k c_k is orthogonal to the three epipolar normals m_n: take the best conditioned
+    // cross product of two of them.
+    std::array<Eigen::Vector3d, 3> m, rotated;
+    for (std::size_t n = 0; n < kNumTriplets; ++n) {
+      rotated[n] = rotated1[n].Rotated(root.yaw);
+      m[n] = rotated[n].cross(xk[n]);
+    }
+    Eigen::Vector3d epipole = m[0].cross(m[1]);
+    for (const Eigen::Vector3d& candidate : {m[1].cross(m[2]), m[2].cross(m[0])}) {
+      if (candidate.squaredNorm() > epipole.squaredNorm()) epipole = candidate;
+    }
+    const double norm = epipole.norm();
+    if (!(norm > 0.0) || !std::isfinite(norm)) continue;
+    epipole /= norm;
+    // View-1 depths lambda_n = ((xk x e) . (xk x R x1)) / |xk x R x1|^2, xk x R x1 = -m_n (note 3.4).
+    for (std::size_t n = 0; n < kNumTriplets; ++n) {
+      const double denominator = m[n].squaredNorm();
+      root.depth[n] = denominator > 0.0 ? -xk[n].cross(epipole).dot(m[n]) / denominator : 0.0;
+    }
+    // The sign of c_k is free: all depths must be positive for one of the two signs.
+    if ((root.depth.array() < 0.0).all()) {
+      epipole = -epipole;
+      root.depth = -root.depth;
+    }
+    if (!(root.depth.array() > 0.0).all()) continue;
+    // In front of camera k too: (R (lambda x1 - c)) . xk = (lambda R x1 - e) . xk > 0.
+    bool in_front = true;
+    for (std::size_t n = 0; n < kNumTriplets; ++n) {
+      in_front = in_front && (root.depth[n] * rotated[n] - epipole).dot(xk[n]) > 0.0;
+    }
+    if (!in_front || !root.depth.allFinite()) continue;
+    root.epipole = epipole;
+    ++count;
+  }
+  return count;
+}
+
+int SolveDecoupledAligned(const Rays& x1, const Rays& x2, const Rays& x3,
+                          std::vector<ThreeViewPose>* solutions) {
+  std::array<PairRoot, 4> roots2, roots3;
+  const int count2 = SolveUprightPair(x1, x2, &roots2);
+  if (count2 == 0) return 0;
+  const int count3 = SolveUprightPair(x1, x3, &roots3);
+
+  struct Candidate {
+    double residual, kappa;
+    int i2, i3;
+  };
+  std::array<Candidate, 16> candidates;
+  int count = 0;
+  for (int i2 = 0; i2 < count2; ++i2) {
+    const Eigen::Vector3d& depth2 = roots2[i2].depth;
+    for (int i3 = 0; i3 < count3; ++i3) {
+      const Eigen::Vector3d& depth3 = roots3[i3].depth;
+      // Scale of c_3 that best matches the depths of pair (1,2); the depth-ratio residual ranks.
+      const double kappa = depth2.dot(depth3) / depth3.squaredNorm();
+      const double residual = (depth2 - kappa * depth3).norm() / depth2.norm();
+      if (!(kappa > 0.0) || !std::isfinite(kappa) || !std::isfinite(residual)) continue;
+      candidates[count++] = {residual, kappa, i2, i3};
+    }
+  }
+  SortByKey(count, [](const Candidate& c) { return c.residual; }, &candidates);
+  int written = 0;
+  for (int i = 0; i < count; ++i) {
+    const PairRoot& root2 = roots2[candidates[i].i2];
+    const PairRoot& root3 = roots3[candidates[i].i3];
+    // R = R_y(theta), t = -R c = -epipole (|c_2| = 1, c_3 scaled by kappa).
+    ThreeViewPose pose;
+    pose.cam2_from_cam1.R = root2.yaw.Matrix();
+    pose.cam2_from_cam1.t = -root2.epipole;
+    pose.cam3_from_cam1.R = root3.yaw.Matrix();
+    pose.cam3_from_cam1.t = -candidates[i].kappa * root3.epipole;
+    if (!pose.IsFinite()) continue;
+    solutions->push_back(pose);
+    ++written;
+  }
+  return written;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Sextic solver (math note 4.3).
+
+// True if all 3 points triangulated from pair (1,k) with this pose lie in front of cameras 1 and k.
+bool PointsInFront(const Rays& x1, const Rays& xk, const CameraPose& pose) {
+  const Eigen::Vector3d center = pose.Center();
+  for (std::size_t n = 0; n < kNumTriplets; ++n) {
+    const double depth = internal::ViewOneDepth(x1[n], xk[n], pose.R, center);
+    if (!(depth > 0.0) || !((pose.R * (depth * x1[n] - center)).dot(xk[n]) > 0.0)) return false;
+  }
+  return true;
+}
+
+// Largest singular value of an upper-triangular 6x6 matrix by power iteration on R^T R (only used to
+// normalise the ranking score, so a few iterations suffice).
+double LargestSingularValue(const Eigen::Matrix<double, 6, 6>& R) {
+  Vector6d x = Vector6d::Ones().normalized();
+  double sigma_squared = 0.0;
+  for (int iteration = 0; iteration < 8; ++iteration) {
+    const Vector6d next = R.transpose() * (R.triangularView<Eigen::Upper>() * x);
+    sigma_squared = next.norm();
+    if (!(sigma_squared > 0.0)) return 0.0;
+    x = next / sigma_squared;
+  }
+  return std::sqrt(sigma_squared);
+}
+
+// The two cores C_12 and C_13 as polynomials in t = tan((theta_2 - theta_0)/2) (note 4.2-4.3).
+class SexticSystem {
+ public:
+  SexticSystem(const Rays& x1, const Rays& x2, const Rays& x3) {
+    static constexpr int kPairs[2][2] = {{0, 1}, {0, 2}};
+    for (int p = 0; p < 2; ++p) {
+      const int a = kPairs[p][0], b = kPairs[p][1];
+      const Eigen::Vector3d w2 = x2[a].cross(x2[b]);
+      const Eigen::Vector3d w3 = x3[a].cross(x3[b]);
+      for (int i = 0; i < 2; ++i) {
+        const TrigLinear rotated(x1[i == 0 ? a : b]);
+        // f_kn(theta) = alpha cos + beta sin + gamma, (alpha, beta, gamma) = (A.w_k, B.w_k, C.w_k).
+        view2_[p][i] = Eigen::Vector3d(rotated.A.dot(w2), rotated.B.dot(w2), rotated.C.dot(w2));
+        view3_[p][i] = Eigen::Vector3d(rotated.A.dot(w3), rotated.B.dot(w3), rotated.C.dot(w3));
+      }
+    }
+  }
+
+  // row_ab(t) = F_b(t) v_3a - F_a(t) v_3b with F_n(t) = (1 + t^2) f_2n(theta_0 + 2 atan t), so that
+  // C_ab = row_ab . (cos theta_3, sin theta_3, 1); coefficients of t^0, t^1, t^2.
+  std::array<Eigen::Vector3d, 3> Row(int pair, const Offset& offset) const {
+    std::array<std::array<double, 3>, 2> F;
+    for (int i = 0; i < 2; ++i) {
+      const Eigen::Vector3d& v = view2_[pair][i];
+      const double alpha = v[0] * offset.c + v[1] * offset.s;
+      const double beta = v[1] * offset.c - v[0] * offset.s;
+      F[i] = {v[2] + alpha, 2.0 * beta, v[2] - alpha};
+    }
+    std::array<Eigen::Vector3d, 3> row;
+    for (int d = 0; d < 3; ++d) row[d] = F[1][d] * view3_[pair][0] - F[0][d] * view3_[pair][1];
+    return row;
+  }
+
+  // (cx, cy, cz)(t) = row_12(t) x row_13(t), degree 4.
+  std::array<Eigen::Vector3d, 5> Cross(const Offset& offset) const {
+    const std::array<Eigen::Vector3d, 3> row12 = Row(0, offset);
+    const std::array<Eigen::Vector3d, 3> row13 = Row(1, offset);
+    std::array<Eigen::Vector3d, 5> cross;
+    cross.fill(Eigen::Vector3d::Zero());
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) cross[i + j] += row12[i].cross(row13[j]);
+    }
+    return cross;
+  }
+
+  // cx^2 + cy^2 - cz^2 (degree 8) divided by its exact factor 1 + t^2: the sextic of note 4.3.
+  std::array<double, 7> Sextic(const Offset& offset) const {
+    const std::array<Eigen::Vector3d, 5> cross = Cross(offset);
+    std::array<double, 9> g{};
+    for (int i = 0; i < 5; ++i) {
+      for (int j = 0; j < 5; ++j) {
+        g[i + j] += cross[i].x() * cross[j].x() + cross[i].y() * cross[j].y() -
+                    cross[i].z() * cross[j].z();
+      }
+    }
+    std::array<double, 7> h{};
+    for (int d = 8; d >= 2; --d) {
+      h[d - 2] = g[d];
+      g[d - 2] -= g[d];
+    }
+    return h;
+  }
+
+ private:
+  // [pair][point a or b]: (alpha, beta, gamma) of f_2n and f_3n.
+  Eigen::Vector3d view2_[2][2], view3_[2][2];
+};
+
+int SolveSexticAligned(const Rays& x1, const Rays& x2, const Rays& x3,
+                       std::vector<ThreeViewPose>* solutions) {
+  const SexticSystem system(x1, x2, x3);
+  std::array<double, 7> sextic = system.Sextic(kOffsets[0]);
+  auto max_abs = [](const std::array<double, 7>& h) {
+    double largest = 0.0;
+    for (const double value : h) largest = std::max(largest, std::abs(value));
+    return largest;
+  };
+  const double scale = max_abs(sextic);
+  if (!(scale > 0.0) || !std::isfinite(scale)) return 0;
+  const Offset* offset = &kOffsets[0];
+  if (std::abs(sextic[6]) < kMinRelativeLeading * scale) {
+    // The leading coefficient is the value of the sextic's trigonometric form at theta_0 + pi.
+    offset = &ChooseOffset(scale, [&](const Offset& theta0) {
+      const std::array<double, 7> h = system.Sextic(theta0);
+      return h[6] * scale / std::max(max_abs(h), 1e-300);
+    });
+    if (offset != &kOffsets[0]) sextic = system.Sextic(*offset);
+  }
+
+  std::array<double, 6> t;
+  const int num_t = internal::SolveSexticReal(sextic, &t);
+
+  struct Candidate {
+    double score;
+    ThreeViewPose pose;
+  };
+  std::array<Candidate, 6> candidates;
+  int count = 0;
+  const std::array<Eigen::Vector3d, 5> cross = system.Cross(*offset);
+  for (int i = 0; i < num_t; ++i) {
+    const Yaw yaw2 = Yaw::FromCayley(t[i], *offset);
+    // (cos theta_3, sin theta_3, 1) ~ row_12 x row_13 at this t.
+    Eigen::Vector3d direction = cross[4];
+    for (int d = 3; d >= 0; --d) direction = direction * t[i] + cross[d];
+    const double horizontal = std::hypot(direction.x(), direction.y());
+    if (!(horizontal > 0.0) || !(direction.z() != 0.0) || !direction.allFinite()) continue;
+    const double sign = direction.z() > 0.0 ? 1.0 : -1.0;
+    const Yaw yaw3 = {sign * direction.x() / horizontal, sign * direction.y() / horizontal};
+
+    // Centres: null vector of the 12x6 translation system with the yaws fixed (note 4.1).
+    const Eigen::Matrix3d R2 = yaw2.Matrix(), R3 = yaw3.Matrix();
+    Eigen::Matrix<double, 12, 6> F;
+    for (std::size_t n = 0; n < kNumTriplets; ++n) {
+      F.middleRows<4>(4 * n) = internal::TranslationRows(x1[n], x2[n], x3[n], R2, R3);
+    }
+    if (!F.allFinite()) continue;
+    const Eigen::Matrix<double, 6, 6> R_F = internal::TriangularFactor(F);
+    const Vector6d centers = internal::SmallestRightSingularVectorOfTriangular<6>(R_F);
+    const double sigma_max = LargestSingularValue(R_F);
+    if (!(sigma_max > 0.0)) continue;
+    const double score = (R_F.triangularView<Eigen::Upper>() * centers).norm() / sigma_max;
+
+    Candidate& candidate = candidates[count];
+    if (!internal::OrientScaleAndMakePose(x1, x2, x3, yaw2.Angle(), centers.head<3>(), yaw3.Angle(),
+                                          centers.tail<3>(), &candidate.pose) ||
+        !PointsInFront(x1, x2, candidate.pose.cam2_from_cam1) ||
+        !PointsInFront(x1, x3, candidate.pose.cam3_from_cam1) || !std::isfinite(score)) {
+      continue;
+    }
+    candidate.score = score;
+    ++count;
+  }
+  SortByKey(count, [](const Candidate& c) { return c.score; }, &candidates);
+  for (int i = 0; i < count; ++i) solutions->push_back(candidates[i].pose);
+  return count;
+}
+
+}  // namespace
+
+int SolveTrifocal3pt(const Rays& x1, const Rays& x2, const Rays& x3,
+                     std::vector<ThreeViewPose>* solutions) {
+  internal::CheckTriplets("SolveTrifocal3pt", kNumTriplets, kNumTriplets, x1, x2, x3, solutions);
+  solutions->clear();
+  return SolveDecoupledAligned(x1, x2, x3, solutions);
+}
+
+int SolveTrifocal3pt(const Rays& x1, const Rays& x2, const Rays& x3,
+                     const Eigen::Vector3d& gravity_in_cam1, const Eigen::Vector3d& gravity_in_cam2,
+                     const Eigen::Vector3d& gravity_in_cam3, std::vector<ThreeViewPose>* solutions) {
+  internal::CheckTriplets("SolveTrifocal3pt", kNumTriplets, kNumTriplets, x1, x2, x3, solutions);
+  return internal::SolveWithGravity(
+      "SolveTrifocal3pt", x1, x2, x3, gravity_in_cam1, gravity_in_cam2, gravity_in_cam3, solutions,
+      [](const Rays& y1, const Rays& y2, const Rays& y3, std::vector<ThreeViewPose>* out) {
+        return SolveTrifocal3pt(y1, y2, y3, out);
+      });
+}
+
+int SolveTrifocal3ptSextic(const Rays& x1, const Rays& x2, const Rays& x3,
+                           std::vector<ThreeViewPose>* solutions) {
+  internal::CheckTriplets("SolveTrifocal3ptSextic", kNumTriplets, kNumTriplets, x1, x2, x3,
+                          solutions);
+  solutions->clear();
+  return SolveSexticAligned(x1, x2, x3, solutions);
+}
+
+int SolveTrifocal3ptSextic(const Rays& x1, const Rays& x2, const Rays& x3,
+                           const Eigen::Vector3d& gravity_in_cam1,
+                           const Eigen::Vector3d& gravity_in_cam2,
+                           const Eigen::Vector3d& gravity_in_cam3,
+                           std::vector<ThreeViewPose>* solutions) {
+  internal::CheckTriplets("SolveTrifocal3ptSextic", kNumTriplets, kNumTriplets, x1, x2, x3,
+                          solutions);
+  return internal::SolveWithGravity(
+      "SolveTrifocal3ptSextic", x1, x2, x3, gravity_in_cam1, gravity_in_cam2, gravity_in_cam3,
+      solutions, [](const Rays& y1, const Rays& y2, const Rays& y3, std::vector<ThreeViewPose>* out) {
+        return SolveTrifocal3ptSextic(y1, y2, y3, out);
+      });
+}
+
+}  // namespace trigrav

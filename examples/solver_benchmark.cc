@@ -7,11 +7,14 @@
 
 #include <benchmark/benchmark.h>
 
+#include "trigrav/initializers/essential_5pt.h"
+#include "trigrav/initializers/essential_8pt.h"
 #include "trigrav/initializers/gravity.h"
 #include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/synthetic_scene.h"
 #include "trigrav/initializers/trifocal_3pt.h"
 #include "trigrav/initializers/trifocal_4pt.h"
+#include "trigrav/initializers/trifocal_linear.h"
 
 namespace {
 
@@ -103,6 +106,63 @@ void BM_Trifocal3ptSextic(benchmark::State& state) {
                      });
 }
 BENCHMARK(BM_Trifocal3ptSextic);
+
+// Two-view counterpart of RunSolverBenchmark: raw rays of views 1 and 2 (no gravity alignment);
+// "found" = fraction of the scenes with the truth (1e-6 deg) among the solutions (they are not ranked).
+template <typename Solver>
+void RunTwoViewSolverBenchmark(benchmark::State& state, int num_points, Solver solve) {
+  std::mt19937_64 rng(2026);
+  trigrav::SyntheticSceneOptions options;
+  options.num_points = num_points;
+  std::vector<trigrav::SyntheticScene> scenes;
+  for (int i = 0; i < 100; ++i) scenes.push_back(trigrav::GenerateSyntheticScene(options, &rng));
+  std::vector<trigrav::CameraPose> solutions;
+  solutions.reserve(16);
+  int found = 0;
+  for (const trigrav::SyntheticScene& scene : scenes) {
+    solve(scene.rays[0], scene.rays[1], &solutions);
+    const trigrav::CameraPose& truth = scene.ground_truth.cam2_from_cam1;
+    for (const trigrav::CameraPose& pose : solutions) {
+      if (trigrav::RotationErrorDeg(truth.R, pose.R) < 1e-6 &&
+          trigrav::DirectionErrorDeg(truth.Center(), pose.Center()) < 1e-6) {
+        ++found;
+        break;
+      }
+    }
+  }
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const trigrav::SyntheticScene& scene = scenes[i++ % scenes.size()];
+    benchmark::DoNotOptimize(solve(scene.rays[0], scene.rays[1], &solutions));
+    benchmark::ClobberMemory();
+  }
+  state.counters["found"] = static_cast<double>(found) / scenes.size();
+}
+
+void BM_Essential5pt(benchmark::State& state) {
+  RunTwoViewSolverBenchmark(state, 5, [](const auto& x1, const auto& x2, auto* solutions) {
+    return trigrav::SolveEssential5pt(x1, x2, solutions);
+  });
+}
+BENCHMARK(BM_Essential5pt);
+
+// Normalised 8-point with 8 and with 20 correspondences.
+void BM_Essential8pt(benchmark::State& state) {
+  RunTwoViewSolverBenchmark(state, static_cast<int>(state.range(0)),
+                            [](const auto& x1, const auto& x2, auto* solutions) {
+                              return trigrav::SolveEssential8pt(x1, x2, solutions);
+                            });
+}
+BENCHMARK(BM_Essential8pt)->Arg(8)->Arg(20);
+
+// Normalised linear trifocal tensor (general rotations) with 7 and with 20 triplets.
+void BM_TrifocalLinear(benchmark::State& state) {
+  RunSolverBenchmark(state, static_cast<int>(state.range(0)),
+                     [](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
+                       return trigrav::SolveTrifocalLinear(x1, x2, x3, solutions);
+                     });
+}
+BENCHMARK(BM_TrifocalLinear)->Arg(7)->Arg(20);
 
 }  // namespace
 

@@ -1,8 +1,9 @@
-// Numerical stability of the minimal solvers on noise-free synthetic scenes (math note 4.5 / 5 / 6):
-// SolveTrifocal3pt (decoupled), SolveTrifocal3ptSextic (the paper's system) and SolveTrifocal4pt on
-// the same scenes. Scenes have 4 points; the 3-point solvers get the first 3. Errors are in the original
-// camera frames (gravity overloads), in degrees, pooled over views 2 and 3; for the 3-point solvers
-// both the best-ranked candidate (what a caller gets) and the oracle-best candidate are reported.
+// Numerical stability of the minimal solvers on noise-free synthetic scenes (math note 4.5 / 5 /
+// 6): SolveTrifocal3pt (decoupled), SolveTrifocal3ptSextic (the paper's system) and
+// SolveTrifocal4pt on the same scenes. Scenes have 4 points; the 3-point solvers get the first 3.
+// Errors are in the original camera frames (gravity overloads), in degrees, pooled over views 2 and
+// 3; for the 3-point solvers both the best-ranked candidate (what a caller gets) and the
+// oracle-best candidate are reported.
 //
 //   solver_stability --trials=5000 --seed=1
 
@@ -72,10 +73,10 @@ void AddErrors(const trigrav::ThreeViewPoseErrors& e, std::vector<double>* rotat
 
 void RunScene(const trigrav::SyntheticScene& scene, Statistics* stats) {
   std::vector<ThreeViewPose> solutions;
-  const int count =
-      stats->solve(FirstN(scene.rays[0], stats->num_points), FirstN(scene.rays[1], stats->num_points),
-                   FirstN(scene.rays[2], stats->num_points), scene.gravity_in_cam_measured[0],
-                   scene.gravity_in_cam_measured[1], scene.gravity_in_cam_measured[2], &solutions);
+  const int count = stats->solve(
+      FirstN(scene.rays[0], stats->num_points), FirstN(scene.rays[1], stats->num_points),
+      FirstN(scene.rays[2], stats->num_points), scene.gravity_in_cam_measured[0],
+      scene.gravity_in_cam_measured[1], scene.gravity_in_cam_measured[2], &solutions);
   stats->candidates += count;
   if (count == 0) {
     ++stats->no_solution;
@@ -93,7 +94,8 @@ void RunScene(const trigrav::SyntheticScene& scene, Statistics* stats) {
       trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, solutions[0]);
   trigrav::ThreeViewPoseErrors oracle = first;
   for (const ThreeViewPose& pose : solutions) {
-    const trigrav::ThreeViewPoseErrors e = trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, pose);
+    const trigrav::ThreeViewPoseErrors e =
+        trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, pose);
     if (worst(e) < worst(oracle)) oracle = e;
   }
   AddErrors(first, &stats->rotation_first, &stats->translation_first);
@@ -157,8 +159,9 @@ int main(int argc, char** argv) {
       const auto& rotation = oracle ? stats.rotation_oracle : stats.rotation_first;
       const auto& translation = oracle ? stats.translation_oracle : stats.translation_first;
       std::printf("%-15s %-7s %9.2f %9.2f %9.2f %9.2f %9.4f %9.4f %9.2f\n", stats.name.c_str(),
-                  oracle ? "oracle" : "ranked", Percentile(rotation, 0.5), Percentile(rotation, 0.99),
-                  Percentile(translation, 0.5), Percentile(translation, 0.99),
+                  oracle ? "oracle" : "ranked", Percentile(rotation, 0.5),
+                  Percentile(rotation, 0.99), Percentile(translation, 0.5),
+                  Percentile(translation, 0.99),
                   static_cast<double>(oracle ? stats.found : stats.found_first) / FLAGS_trials,
                   static_cast<double>(stats.no_solution) / FLAGS_trials,
                   static_cast<double>(stats.candidates) / FLAGS_trials);

@@ -88,6 +88,35 @@ TEST(SyntheticScene, NoiseHasTheRequestedSpread) {
   EXPECT_NEAR(std::sqrt(tilt_sum_squares / tilt_count), 0.5, 0.06);
 }
 
+TEST(SyntheticScene, OutliersAreFarFromTheTruthAndCounted) {
+  std::mt19937_64 noisy_rng(3), clean_rng(3);
+  SyntheticSceneOptions options;
+  options.num_points = 100;
+  SyntheticSceneOptions with_outliers = options;
+  with_outliers.outlier_ratio = 0.3;
+  const SyntheticScene clean = GenerateSyntheticScene(options, &clean_rng);
+  const SyntheticScene dirty = GenerateSyntheticScene(with_outliers, &noisy_rng);
+  int outliers = 0;
+  for (int n = 0; n < 100; ++n) {
+    int views_changed = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double shift = (dirty.pixels[k][n] - clean.pixels[k][n]).norm();
+      views_changed += shift > 0.0;
+      if (shift > 0.0) {
+        EXPECT_GE(shift, 20.0);
+      }
+      EXPECT_NEAR((dirty.camera.Ray(dirty.pixels[k][n]) - dirty.rays[k][n]).norm(), 0.0, 1e-15);
+    }
+    EXPECT_EQ(views_changed, dirty.is_inlier[n] ? 0 : 1);
+    outliers += !dirty.is_inlier[n];
+  }
+  EXPECT_EQ(outliers, 30);
+  const ThreeViewObservations observations = ToObservations(dirty);
+  EXPECT_NO_THROW(observations.Check());
+  EXPECT_EQ(observations.pixels[2][7], dirty.pixels[2][7]);
+  EXPECT_EQ(observations.cameras[1].fx, 500.0);
+}
+
 TEST(SyntheticScene, SameSeedSameScene) {
   std::mt19937_64 a(7), b(7);
   SyntheticSceneOptions options;

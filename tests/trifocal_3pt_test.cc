@@ -69,7 +69,8 @@ double WorstError(const ThreeViewPoseErrors& e) {
   return std::max(e.MaxRotationDeg(), e.MaxTranslationDeg());
 }
 
-// Index of the candidate closest to the truth (worst of rotation and translation errors), -1 if none.
+// Index of the candidate closest to the truth (worst of rotation and translation errors), -1 if
+// none.
 int ClosestCandidate(const ThreeViewPose& truth, const std::vector<ThreeViewPose>& solutions,
                      ThreeViewPoseErrors* errors) {
   int best = -1;
@@ -90,7 +91,8 @@ double Median(std::vector<double> values) {
 }
 
 // The ground truth of a scene in gravity-aligned frames (the inverse of UnalignThreeViewPose).
-ThreeViewPose AlignedTruth(const ThreeViewPose& truth, const std::array<Eigen::Matrix3d, 3>& align) {
+ThreeViewPose AlignedTruth(const ThreeViewPose& truth,
+                           const std::array<Eigen::Matrix3d, 3>& align) {
   return UnalignThreeViewPose(truth, align[0].transpose(), align[1].transpose(),
                               align[2].transpose());
 }
@@ -145,8 +147,8 @@ TEST(Trifocal3ptSextic, NoiseFreeContainsTruthInMostScenes) {
   EXPECT_GE(found, 0.95 * kScenes);
 }
 
-// Scenes unlike the default: other focal lengths, yaw far beyond 10 deg (relative yaw up to 340 deg,
-// so the Cayley offset switch near 180 deg is exercised), larger tilts.
+// Scenes unlike the default: other focal lengths, yaw far beyond 10 deg (relative yaw up to 340
+// deg, so the Cayley offset switch near 180 deg is exercised), larger tilts.
 TEST(Trifocal3pt, GeneralisesToUnseenScenes) {
   std::mt19937_64 rng(3);
   struct Case {
@@ -186,12 +188,14 @@ TEST(Trifocal3pt, GravityOverloadsMatchAligningByHand) {
             GravityAlignmentFromGravity(scene.gravity_in_cam_measured[0]),
             GravityAlignmentFromGravity(scene.gravity_in_cam_measured[1]),
             GravityAlignmentFromGravity(scene.gravity_in_cam_measured[2])};
-        ASSERT_EQ(solver.aligned(AlignRays(align[0], scene.rays[0]), AlignRays(align[1], scene.rays[1]),
-                                 AlignRays(align[2], scene.rays[2]), &by_hand),
-                  count)
+        ASSERT_EQ(
+            solver.aligned(AlignRays(align[0], scene.rays[0]), AlignRays(align[1], scene.rays[1]),
+                           AlignRays(align[2], scene.rays[2]), &by_hand),
+            count)
             << solver.name;
         for (int i = 0; i < count; ++i) {
-          const ThreeViewPose unaligned = UnalignThreeViewPose(by_hand[i], align[0], align[1], align[2]);
+          const ThreeViewPose unaligned =
+              UnalignThreeViewPose(by_hand[i], align[0], align[1], align[2]);
           EXPECT_EQ(unaligned.cam2_from_cam1.R, from_gravity[i].cam2_from_cam1.R) << solver.name;
           EXPECT_EQ(unaligned.cam2_from_cam1.t, from_gravity[i].cam2_from_cam1.t) << solver.name;
           EXPECT_EQ(unaligned.cam3_from_cam1.R, from_gravity[i].cam3_from_cam1.R) << solver.name;
@@ -214,8 +218,10 @@ TEST(Trifocal3pt, YawNear180Degrees) {
     for (const double yaw : {M_PI, M_PI - 1e-9, -M_PI + 1e-6, M_PI - 1e-3, M_PI - 0.05}) {
       for (const bool turn_view3 : {false, true}) {
         const Eigen::Matrix3d turn2 = RotationAboutY(yaw);
-        const Eigen::Matrix3d turn3 = turn_view3 ? RotationAboutY(-yaw) : Eigen::Matrix3d::Identity();
-        const std::array<Eigen::Matrix3d, 3> turned = {align[0], turn2 * align[1], turn3 * align[2]};
+        const Eigen::Matrix3d turn3 =
+            turn_view3 ? RotationAboutY(-yaw) : Eigen::Matrix3d::Identity();
+        const std::array<Eigen::Matrix3d, 3> turned = {align[0], turn2 * align[1],
+                                                       turn3 * align[2]};
         const Rays x1 = AlignRays(turned[0], base.rays[0]);
         const Rays x2 = AlignRays(turned[1], base.rays[1]);
         const Rays x3 = AlignRays(turned[2], base.rays[2]);
@@ -258,8 +264,9 @@ TEST(Trifocal3pt, MisuseThrows) {
     bad({}, {}, {});                                      // empty
     bad(x1, {x2[0], x2[1]}, x3);                          // sizes differ
     bad(x1, x2, scene.rays[2]);                           // sizes differ
-    for (const Eigen::Vector3d& value : {Eigen::Vector3d(NAN, 0, 1), Eigen::Vector3d(0, INFINITY, 1),
-                                         Eigen::Vector3d(0, 0, -INFINITY), Eigen::Vector3d::Zero().eval()}) {
+    for (const Eigen::Vector3d& value :
+         {Eigen::Vector3d(NAN, 0, 1), Eigen::Vector3d(0, INFINITY, 1),
+          Eigen::Vector3d(0, 0, -INFINITY), Eigen::Vector3d::Zero().eval()}) {
       for (int view = 0; view < 3; ++view) {
         std::array<Rays, 3> rays = {x1, x2, x3};
         rays[view][1] = value;
@@ -267,18 +274,21 @@ TEST(Trifocal3pt, MisuseThrows) {
       }
     }
     for (const Eigen::Vector3d& gravity :
-         {Eigen::Vector3d::Zero().eval(), Eigen::Vector3d(0, NAN, 0), Eigen::Vector3d(INFINITY, 1, 0)}) {
+         {Eigen::Vector3d::Zero().eval(), Eigen::Vector3d(0, NAN, 0),
+          Eigen::Vector3d(INFINITY, 1, 0)}) {
       EXPECT_THROW(solver.gravity(x1, x2, x3, gravity, g, g, &solutions), std::invalid_argument);
       EXPECT_THROW(solver.gravity(x1, x2, x3, g, gravity, g, &solutions), std::invalid_argument);
       EXPECT_THROW(solver.gravity(x1, x2, x3, g, g, gravity, &solutions), std::invalid_argument);
     }
     EXPECT_THROW(solver.aligned(x1, x2, x3, nullptr), std::invalid_argument) << solver.name;
-    EXPECT_THROW(solver.gravity(x1, x2, x3, g, g, g, nullptr), std::invalid_argument) << solver.name;
+    EXPECT_THROW(solver.gravity(x1, x2, x3, g, g, g, nullptr), std::invalid_argument)
+        << solver.name;
     try {
       solver.aligned(x1, x2, scene.rays[2], &solutions);
       ADD_FAILURE() << solver.name << " accepted sizes 3, 3, 4";
     } catch (const std::invalid_argument& error) {
-      EXPECT_NE(std::string(error.what()).find("differ in size"), std::string::npos) << error.what();
+      EXPECT_NE(std::string(error.what()).find("differ in size"), std::string::npos)
+          << error.what();
     }
     try {
       solver.aligned(scene.rays[0], scene.rays[1], scene.rays[2], &solutions);
@@ -316,8 +326,8 @@ TEST(Trifocal3pt, DegenerateInputGivesFinitePosesOnly) {
       {"collinear through centre 2", x1, same_ray2, x3},
       {"one point three times", same_ray1, Rays(3, x2[0]), Rays(3, x3[0])},
       {"views 2 and 3 identical", x1, x2, x2},
-      {"all rays along gravity", Rays(3, Eigen::Vector3d::UnitY()), Rays(3, Eigen::Vector3d::UnitY()),
-       Rays(3, Eigen::Vector3d::UnitY())},
+      {"all rays along gravity", Rays(3, Eigen::Vector3d::UnitY()),
+       Rays(3, Eigen::Vector3d::UnitY()), Rays(3, Eigen::Vector3d::UnitY())},
       {"tiny rays", {1e-150 * x1[0], 1e-150 * x1[1], 1e-150 * x1[2]}, x2, x3},
       {"huge rays", x1, x2, {1e150 * x3[0], 1e150 * x3[1], 1e150 * x3[2]}},
   };
@@ -325,7 +335,8 @@ TEST(Trifocal3pt, DegenerateInputGivesFinitePosesOnly) {
     for (const Case& c : cases) {
       std::vector<ThreeViewPose> solutions;
       int count = -1;
-      ASSERT_NO_THROW(count = solver.aligned(c.a, c.b, c.c, &solutions)) << solver.name << ": " << c.name;
+      ASSERT_NO_THROW(count = solver.aligned(c.a, c.b, c.c, &solutions))
+          << solver.name << ": " << c.name;
       EXPECT_EQ(count, static_cast<int>(solutions.size()));
       for (const ThreeViewPose& pose : solutions) {
         EXPECT_TRUE(pose.IsFinite()) << solver.name << ": " << c.name;
@@ -335,8 +346,8 @@ TEST(Trifocal3pt, DegenerateInputGivesFinitePosesOnly) {
 }
 
 // With 1 px noise the best-ranked candidate is about as accurate as math note section 6 measured
-// (median rotation error 1.23 deg decoupled, 3.42 deg sextic); scenes without a candidate count as a
-// 180 deg error. The decoupled solver is the more accurate one (note 4.5).
+// (median rotation error 1.23 deg decoupled, 3.42 deg sextic); scenes without a candidate count as
+// a 180 deg error. The decoupled solver is the more accurate one (note 4.5).
 TEST(Trifocal3pt, NoisyMedianErrorsMatchTheNote) {
   std::array<double, 2> medians{};
   for (int s = 0; s < 2; ++s) {

@@ -13,9 +13,10 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-// Real roots of the monic quadratic y^2 + b y + c, written to roots. A discriminant that is negative
-// only by rounding (relative to the size of its terms) gives the double root -b/2 once; complex roots
-// with imaginary part <= max_imag give their real part -b/2 once, flagged in *approximate.
+// Real roots of the monic quadratic y^2 + b y + c, written to roots. A discriminant that is
+// negative only by rounding (relative to the size of its terms) gives the double root -b/2 once;
+// complex roots with imaginary part <= max_imag give their real part -b/2 once, flagged in
+// *approximate.
 int SolveMonicQuadratic(double b, double c, double max_imag, double* roots, bool* approximate) {
   const double half_b = 0.5 * b;
   const double discriminant = half_b * half_b - c;
@@ -73,7 +74,8 @@ int SolveQuarticReal(const std::array<double, 5>& c, std::array<double, 4>* root
   // Ferrari: (y^2 + p/2 + m)^2 = 2m (y - q/(4m))^2 when m solves the resolvent cubic
   // m^3 + p m^2 + (p^2/4 - r) m - q^2/8 = 0; the largest root is the best conditioned choice.
   const double m = LargestRealCubicRoot(p, 0.25 * p * p - r, -0.125 * q * q);
-  const double scale = std::max({std::abs(p), std::sqrt(std::abs(r)), std::cbrt(std::abs(q)), 1e-300});
+  const double scale =
+      std::max({std::abs(p), std::sqrt(std::abs(r)), std::cbrt(std::abs(q)), 1e-300});
 
   std::array<double, 4> y;
   // Real parts of near-real complex pairs are not roots: Newton could walk them onto a neighbouring
@@ -84,7 +86,8 @@ int SolveQuarticReal(const std::array<double, 5>& c, std::array<double, 4>* root
     // y^2 -/+ s y + (p/2 + m +/- q/(2s)) = 0 with s = sqrt(2m).
     const double s = std::sqrt(2.0 * m);
     const double offset = 0.5 * q / s;
-    count += SolveMonicQuadratic(-s, 0.5 * p + m + offset, max_imag, &y[count], &approximate[count]);
+    count +=
+        SolveMonicQuadratic(-s, 0.5 * p + m + offset, max_imag, &y[count], &approximate[count]);
     count += SolveMonicQuadratic(s, 0.5 * p + m - offset, max_imag, &y[count], &approximate[count]);
   } else {
     // q ~ 0: biquadratic y^4 + p y^2 + r, y^2 = z with z^2 + p z + r = 0.
@@ -111,7 +114,8 @@ int SolveQuarticReal(const std::array<double, 5>& c, std::array<double, 4>* root
 
 int SolveSexticReal(const std::array<double, 7>& c, std::array<double, 6>* roots,
                     double max_relative_imag, int newton_steps) {
-  // Companion matrix of the monic polynomial: ones on the subdiagonal, -c[i]/c[6] in the last column.
+  // Companion matrix of the monic polynomial: ones on the subdiagonal, -c[i]/c[6] in the last
+  // column.
   Eigen::Matrix<double, 6, 6> companion = Eigen::Matrix<double, 6, 6>::Zero();
   for (int i = 0; i < 5; ++i) companion(i + 1, i) = 1.0;
   for (int i = 0; i < 6; ++i) companion(i, 5) = -c[i] / c[6];

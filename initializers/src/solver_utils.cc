@@ -50,6 +50,33 @@ void CheckTriplets(const char* solver, std::size_t min_triplets, std::size_t max
   CheckRays(solver, "x3", x3);
 }
 
+void CheckPairs(const char* solver, std::size_t min_pairs, std::size_t max_pairs,
+                const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
+                const void* solutions) {
+  std::ostringstream message;
+  message << "trigrav: " << solver << ": ";
+  if (solutions == nullptr) {
+    message << "solutions is null";
+    throw std::invalid_argument(message.str());
+  }
+  if (x1.size() != x2.size()) {
+    message << "x1, x2 differ in size (" << x1.size() << ", " << x2.size() << ")";
+    throw std::invalid_argument(message.str());
+  }
+  if (x1.size() < min_pairs || x1.size() > max_pairs) {
+    message << "needs ";
+    if (min_pairs == max_pairs) {
+      message << "exactly " << min_pairs;
+    } else {
+      message << "at least " << min_pairs;
+    }
+    message << " correspondences, got " << x1.size();
+    throw std::invalid_argument(message.str());
+  }
+  CheckRays(solver, "x1", x1);
+  CheckRays(solver, "x2", x2);
+}
+
 void CheckGravity(const char* solver, const char* name, const Eigen::Vector3d& gravity) {
   const double norm = gravity.norm();
   if (!gravity.allFinite() || !(norm > 0.0) || !std::isfinite(norm)) {

@@ -27,6 +27,12 @@ void CheckTriplets(const char* solver, std::size_t min_triplets, std::size_t max
                    const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
                    const std::vector<Eigen::Vector3d>& x3, const void* solutions);
 
+// The two-view counterpart of CheckTriplets: throws std::invalid_argument unless x1, x2 have the same
+// size within [min_pairs, max_pairs], every ray is finite with non-zero length, and solutions is not null.
+void CheckPairs(const char* solver, std::size_t min_pairs, std::size_t max_pairs,
+                const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
+                const void* solutions);
+
 // Throws std::invalid_argument if a gravity direction is non-finite or has zero length.
 void CheckGravity(const char* solver, const char* name, const Eigen::Vector3d& gravity);
 

@@ -1,5 +1,6 @@
 #include "trigrav/initializers/synthetic_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -107,7 +108,42 @@ bool DrawPoints(const SyntheticSceneOptions& options, std::mt19937_64* rng, Synt
   return true;
 }
 
+// Replaces one random view's pixel of a random outlier_ratio fraction of the triplets.
+void InjectOutliers(const SyntheticSceneOptions& options, std::mt19937_64* rng, SyntheticScene* scene) {
+  const int n = static_cast<int>(scene->points_in_world.size());
+  scene->is_inlier.assign(n, 1);
+  if (options.outlier_ratio <= 0.0) return;
+  std::vector<int> order(n);
+  for (int i = 0; i < n; ++i) order[i] = i;
+  std::shuffle(order.begin(), order.end(), *rng);
+  const int num_outliers = static_cast<int>(std::lround(options.outlier_ratio * n));
+  std::uniform_int_distribution<int> view(0, 2);
+  std::uniform_real_distribution<double> u(0.0, options.width_px), v(0.0, options.height_px);
+  constexpr double kMinShiftPx = 20.0;
+  for (int j = 0; j < num_outliers; ++j) {
+    const int i = order[j];
+    const int k = view(*rng);
+    Eigen::Vector2d replacement;
+    do {
+      replacement = Eigen::Vector2d(u(*rng), v(*rng));
+    } while ((replacement - scene->pixels[k][i]).norm() < kMinShiftPx);
+    scene->pixels[k][i] = replacement;
+    scene->rays[k][i] = scene->camera.Ray(replacement);
+    scene->is_inlier[i] = 0;
+  }
+}
+
 }  // namespace
+
+ThreeViewObservations ToObservations(const SyntheticScene& scene) {
+  ThreeViewObservations observations;
+  for (int k = 0; k < 3; ++k) {
+    observations.cameras[k] = scene.camera;
+    observations.gravity_in_cam[k] = scene.gravity_in_cam_measured[k];
+    observations.pixels[k] = scene.pixels[k];
+  }
+  return observations;
+}
 
 void SyntheticSceneOptions::Check() const {
   CheckField(num_points >= 1, "num_points must be >= 1");
@@ -125,15 +161,20 @@ void SyntheticSceneOptions::Check() const {
              "imu_pitch_noise_deg must be >= 0");
   CheckField(imu_roll_noise_deg >= 0.0 && std::isfinite(imu_roll_noise_deg),
              "imu_roll_noise_deg must be >= 0");
+  CheckField(outlier_ratio >= 0.0 && outlier_ratio <= 1.0, "outlier_ratio must be in [0, 1]");
 }
 
 SyntheticScene GenerateSyntheticScene(const SyntheticSceneOptions& options, std::mt19937_64* rng) {
   options.Check();
   if (rng == nullptr) throw std::invalid_argument("trigrav: GenerateSyntheticScene: rng is null");
   SyntheticScene scene;
+  scene.camera = {options.focal_px, options.focal_px, 0.5 * options.width_px, 0.5 * options.height_px};
   for (int attempt = 0; attempt < kMaxSceneDraws; ++attempt) {
     DrawCameras(options, rng, &scene);
-    if (DrawPoints(options, rng, &scene)) return scene;
+    if (DrawPoints(options, rng, &scene)) {
+      InjectOutliers(options, rng, &scene);
+      return scene;
+    }
   }
   throw std::runtime_error("trigrav: GenerateSyntheticScene: no scene with all points visible");
 }

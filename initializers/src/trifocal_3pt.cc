@@ -16,10 +16,10 @@ using Vector6d = Eigen::Matrix<double, 6, 1>;
 constexpr std::size_t kNumTriplets = 3;
 
 // Offsets theta_0 of the Cayley parameter t = tan((theta - theta_0)/2), tried in this order. The
-// parameterisation misses theta = theta_0 + pi, where the leading coefficient of the polynomial in t
-// vanishes; 0 is the paper's choice, the others take over when a root lies at or near pi (see
-// ChooseOffset). The polynomials are trigonometric of degree <= 4 in theta, with at most 8 zeros in a
-// period, so one of the 9 offsets has a leading coefficient well away from zero.
+// parameterisation misses theta = theta_0 + pi, where the leading coefficient of the polynomial in
+// t vanishes; 0 is the paper's choice, the others take over when a root lies at or near pi (see
+// ChooseOffset). The polynomials are trigonometric of degree <= 4 in theta, with at most 8 zeros in
+// a period, so one of the 9 offsets has a leading coefficient well away from zero.
 struct Offset {
   double c, s;    // cos and sin of theta_0
   double c2, s2;  // cos and sin of 2 theta_0
@@ -40,15 +40,15 @@ constexpr std::array<Offset, 9> kOffsets = {{
 }};
 // The leading coefficient counts as tiny below this fraction of the largest coefficient.
 constexpr double kMinRelativeLeading = 1e-2;
-// Decoupled solver: at most this many guarded Newton steps polish each quartic root (usually 1-2 are
-// taken; near-double roots need more).
+// Decoupled solver: at most this many guarded Newton steps polish each quartic root (usually 1-2
+// are taken; near-double roots need more).
 constexpr int kQuarticNewtonSteps = 6;
-// Decoupled solver: a complex pair of quartic roots with |Im t| below this also gives a candidate, at
-// its real part (about where the epipolar constraints of the pair come closest to consistent). Noise
-// turns near-double real roots, often the true one among them, into such pairs. On the note's scenes
-// at 1 px this cuts the scenes without any candidate from 5.3 % to 0.9 % and the median rotation error
-// of the best-ranked candidate from 1.15 to 0.95 deg, for 0.2 more candidates per call noise-free
-// (0.6 at 1 px). Exact roots are unaffected. Not in the note.
+// Decoupled solver: a complex pair of quartic roots with |Im t| below this also gives a candidate,
+// at its real part (about where the epipolar constraints of the pair come closest to consistent).
+// Noise turns near-double real roots, often the true one among them, into such pairs. On the note's
+// scenes at 1 px this cuts the scenes without any candidate from 5.3 % to 0.9 % and the median
+// rotation error of the best-ranked candidate from 1.15 to 0.95 deg, for 0.2 more candidates per
+// call noise-free (0.6 at 1 px). Exact roots are unaffected. Not in the note.
 constexpr double kMaxImaginaryPart = 0.1;
 
 // Sorts the first `count` entries of a small array by key, ascending (insertion sort, no heap).
@@ -89,8 +89,8 @@ struct TrigLinear {
 };
 
 // Picks the Cayley offset: the first of kOffsets whose leading coefficient (the value of the
-// trigonometric polynomial at theta_0 + pi, evaluated by `leading`) is not tiny relative to `scale`,
-// else the one with the largest leading coefficient.
+// trigonometric polynomial at theta_0 + pi, evaluated by `leading`) is not tiny relative to
+// `scale`, else the one with the largest leading coefficient.
 template <typename Leading>
 const Offset& ChooseOffset(double scale, Leading&& leading) {
   const Offset* best_offset = &kOffsets[0];
@@ -106,13 +106,13 @@ const Offset& ChooseOffset(double scale, Leading&& leading) {
   return *best_offset;
 }
 
-// ---------------------------------------------------------------------------------------------------
+// ------------------------------------------------------------------------------------------------
 // Decoupled solver (math note 4.4).
 
 // One real root of the upright 2-view problem of pair (1,k) that passes cheirality.
 struct PairRoot {
   Yaw yaw;
-  Eigen::Vector3d epipole;  // R_k c_k, unit: the centre of camera k in camera-k axes, negated t
+  Eigen::Vector3d epipole;  // R_k c_k = -t_k (camera k's fourth column, negated), unit
   Eigen::Vector3d depth;    // view-1 depths lambda_n of the 3 points, |c_k| = 1
 };
 
@@ -181,8 +181,8 @@ int SolveUprightPair(const Rays& x1, const Rays& xk, std::array<PairRoot, 4>* ro
   for (int i = 0; i < num_t; ++i) {
     PairRoot& root = (*roots)[count];
     root.yaw = Yaw::FromCayley(t[i], offset);
-    // The epipole R_k c_k is orthogonal to the three epipolar normals m_n: take the best conditioned
-    // cross product of two of them.
+    // The epipole R_k c_k is orthogonal to the three epipolar normals m_n: take the best
+    // conditioned cross product of two of them.
     std::array<Eigen::Vector3d, 3> m, rotated;
     for (std::size_t n = 0; n < kNumTriplets; ++n) {
       rotated[n] = rotated1[n].Rotated(root.yaw);
@@ -195,7 +195,8 @@ int SolveUprightPair(const Rays& x1, const Rays& xk, std::array<PairRoot, 4>* ro
     const double norm = epipole.norm();
     if (!(norm > 0.0) || !std::isfinite(norm)) continue;
     epipole /= norm;
-    // View-1 depths lambda_n = ((xk x e) . (xk x R x1)) / |xk x R x1|^2, xk x R x1 = -m_n (note 3.4).
+    // View-1 depths lambda_n = ((xk x e) . (xk x R x1)) / |xk x R x1|^2, xk x R x1 = -m_n
+    // (note 3.4).
     for (std::size_t n = 0; n < kNumTriplets; ++n) {
       const double denominator = m[n].squaredNorm();
       root.depth[n] = denominator > 0.0 ? -xk[n].cross(epipole).dot(m[n]) / denominator : 0.0;
@@ -260,7 +261,7 @@ int SolveDecoupledAligned(const Rays& x1, const Rays& x2, const Rays& x3,
   return written;
 }
 
-// ---------------------------------------------------------------------------------------------------
+// ------------------------------------------------------------------------------------------------
 // Sextic solver (math note 4.3).
 
 // True if all 3 points triangulated from pair (1,k) with this pose lie in front of cameras 1 and k.
@@ -273,8 +274,8 @@ bool PointsInFront(const Rays& x1, const Rays& xk, const CameraPose& pose) {
   return true;
 }
 
-// Largest singular value of an upper-triangular 6x6 matrix by power iteration on R^T R (only used to
-// normalise the ranking score, so a few iterations suffice).
+// Largest singular value of an upper-triangular 6x6 matrix by power iteration on R^T R (only used
+// to normalise the ranking score, so a few iterations suffice).
 double LargestSingularValue(const Eigen::Matrix<double, 6, 6>& R) {
   Vector6d x = Vector6d::Ones().normalized();
   double sigma_squared = 0.0;
@@ -433,10 +434,13 @@ int SolveTrifocal3pt(const Rays& x1, const Rays& x2, const Rays& x3,
   return SolveDecoupledAligned(x1, x2, x3, solutions);
 }
 
-int SolveTrifocal3pt(const Rays& x1, const Rays& x2, const Rays& x3,
-                     const Eigen::Vector3d& gravity_in_cam1, const Eigen::Vector3d& gravity_in_cam2,
-                     const Eigen::Vector3d& gravity_in_cam3, std::vector<ThreeViewPose>* solutions) {
-  internal::CheckTriplets("SolveTrifocal3pt", kNumTriplets, kNumTriplets, x1, x2, x3, solutions);
+int SolveTrifocal3pt(const Rays& x1,
+                     const Rays& x2,
+                     const Rays& x3,
+                     const Eigen::Vector3d& gravity_in_cam1,
+                     const Eigen::Vector3d& gravity_in_cam2,
+                     const Eigen::Vector3d& gravity_in_cam3,
+                     std::vector<ThreeViewPose>* solutions) {
   return internal::SolveWithGravity(
       "SolveTrifocal3pt", x1, x2, x3, gravity_in_cam1, gravity_in_cam2, gravity_in_cam3, solutions,
       [](const Rays& y1, const Rays& y2, const Rays& y3, std::vector<ThreeViewPose>* out) {
@@ -457,11 +461,10 @@ int SolveTrifocal3ptSextic(const Rays& x1, const Rays& x2, const Rays& x3,
                            const Eigen::Vector3d& gravity_in_cam2,
                            const Eigen::Vector3d& gravity_in_cam3,
                            std::vector<ThreeViewPose>* solutions) {
-  internal::CheckTriplets("SolveTrifocal3ptSextic", kNumTriplets, kNumTriplets, x1, x2, x3,
-                          solutions);
   return internal::SolveWithGravity(
       "SolveTrifocal3ptSextic", x1, x2, x3, gravity_in_cam1, gravity_in_cam2, gravity_in_cam3,
-      solutions, [](const Rays& y1, const Rays& y2, const Rays& y3, std::vector<ThreeViewPose>* out) {
+      solutions,
+      [](const Rays& y1, const Rays& y2, const Rays& y3, std::vector<ThreeViewPose>* out) {
         return SolveTrifocal3ptSextic(y1, y2, y3, out);
       });
 }

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "trigrav/initializers/camera_pose.h"
+#include "trigrav/initializers/three_view_observations.h"
 
 namespace trigrav {
 
@@ -30,6 +31,9 @@ struct SyntheticSceneOptions {
   double pixel_noise_px = 0.0;         // N(0, sigma^2) on u and v in all three views
   double imu_pitch_noise_deg = 0.0;    // N(0, sigma^2) on the pitch seen by the solver, per view
   double imu_roll_noise_deg = 0.0;     // N(0, sigma^2) on the roll seen by the solver, per view
+  // Fraction of triplets made outliers: one view's pixel (chosen at random) is replaced by a uniform
+  // random pixel at least 20 px from the true one. With 0 no extra random numbers are drawn.
+  double outlier_ratio = 0.0;
 
   // Throws std::invalid_argument naming the first bad field.
   void Check() const;
@@ -46,7 +50,12 @@ struct SyntheticScene {
   std::array<Eigen::Matrix3d, 3> gravity_alignment_true;
   std::array<Eigen::Matrix3d, 3> gravity_alignment_measured;  // with IMU noise
   std::array<Eigen::Vector3d, 3> gravity_in_cam_measured;     // unit, down, with IMU noise
+  PinholeCamera camera;                                       // the same for all three views
+  std::vector<char> is_inlier;                                // per triplet
 };
+
+// The scene as a pipeline sees it: intrinsics, measured gravity and (noisy, outlier-ridden) pixels.
+ThreeViewObservations ToObservations(const SyntheticScene& scene);
 
 // Draws one scene. Points are drawn as uniform pixels in view 1 at a uniform view-1 depth and kept if
 // they are in front of and inside all three images; the scene is redrawn if 200 draws in a row fail.

@@ -1,0 +1,227 @@
+#ifndef TRIGRAV_INITIALIZERS_RANSAC_H_
+#define TRIGRAV_INITIALIZERS_RANSAC_H_
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace trigrav {
+
+// Options of the generic RANSAC loop. Errors are in the estimator's unit (pixels for trigrav's
+// three-view estimators).
+struct RansacOptions {
+  double max_error = 2.0;         // inlier threshold; MSAC truncates squared errors at its square
+  double confidence = 0.9999;     // probability of drawing at least one all-inlier sample
+  int min_iterations = 20;
+  int max_iterations = 10000;
+  std::uint64_t seed = 0;         // same seed, same data: bit-identical result
+  // Local optimisation whenever a better model appears: `local_optimization_rounds` re-estimates, each
+  // from the inliers of the previous one, at a threshold shrinking linearly from
+  // max_error * local_optimization_threshold_multiplier to max_error (Lebeda, Matas, Chum, "Fixing
+  // the locally optimized RANSAC", BMVC 2012). Every result is scored at max_error.
+  bool local_optimization = true;
+  int local_optimization_rounds = 4;
+  double local_optimization_threshold_multiplier = 3.0;
+
+  // Throws std::invalid_argument naming the first bad field.
+  void Check() const;
+};
+
+template <typename Model>
+struct RansacReport {
+  bool success = false;
+  std::string message;              // why not, when !success
+  Model model{};
+  std::vector<char> inlier_mask;    // inlier_mask[i] != 0 iff error(model, i) <= max_error
+  int num_inliers = 0;
+  int iterations = 0;               // samples drawn
+  int num_models_scored = 0;
+  int num_local_optimizations = 0;
+  double msac_cost = std::numeric_limits<double>::infinity();  // sum_i min(e_i^2, max_error^2)
+};
+
+// Generic RANSAC with MSAC scoring, adaptive stopping and local optimisation (Chum, Matas, Kittler,
+// "Locally optimized RANSAC", 2003; Torr and Zisserman's MSAC, 2000).
+//
+// Estimator concept (no virtual calls; everything is resolved at compile time):
+//   using Model = ...;                                   // copyable
+//   static constexpr int kSampleSize = s;                // minimal sample
+//   std::size_t num_data() const;
+//   // Models of a minimal sample (indices into the data, distinct); append to *models.
+//   void generate_models(const std::array<int, kSampleSize>& sample, std::vector<Model>* models) const;
+//   // Error of datum i under a model, in the unit of RansacOptions::max_error; +inf if it cannot be
+//   // explained (e.g. behind a camera). Never NaN.
+//   double error(const Model& model, std::size_t i) const;
+//   // Local optimisation: a better model from the inlier indices (e.g. a non-minimal solver). Returns
+//   // false to keep the current one.
+//   bool refine_model(const std::vector<int>& inliers, Model* model) const;
+//
+// The loop draws distinct random samples (std::mt19937_64 seeded with options.seed), scores each
+// model by the MSAC cost, stopping a model's scoring as soon as its partial cost exceeds the best
+// one, and stops after max(min_iterations, k) samples with k = log(1 - confidence) /
+// log(1 - w^s) for the best inlier ratio w so far, or at max_iterations.
+template <typename Estimator>
+RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
+                                               const RansacOptions& options);
+
+// ---------------------------------------------------------------------------------------------
+// Implementation.
+
+namespace internal {
+
+// Distinct uniform indices in [0, n), n >= S (Floyd's algorithm would need a set; for S <= 8 a
+// rejection loop over the few already drawn is simplest and allocation-free).
+template <int S>
+void DrawSample(int n, std::mt19937_64* rng, std::array<int, S>* sample) {
+  std::uniform_int_distribution<int> index(0, n - 1);
+  for (int i = 0; i < S; ++i) {
+    bool repeated = true;
+    while (repeated) {
+      (*sample)[i] = index(*rng);
+      repeated = std::find(sample->begin(), sample->begin() + i, (*sample)[i]) !=
+                 sample->begin() + i;
+    }
+  }
+}
+
+// Samples needed for the confidence with inlier ratio w and sample size s.
+inline int RequiredIterations(double inlier_ratio, int sample_size, double confidence) {
+  const double all_inliers = std::pow(inlier_ratio, sample_size);
+  if (all_inliers >= 1.0) return 0;
+  // log1p keeps tiny probabilities (w^s = 1e-19 would round 1 - w^s to 1 and give k = -inf).
+  const double denominator = std::log1p(-all_inliers);
+  if (!(denominator < 0.0)) return std::numeric_limits<int>::max();
+  const double k = std::log1p(-confidence) / denominator;
+  return k >= static_cast<double>(std::numeric_limits<int>::max()) ? std::numeric_limits<int>::max()
+                                                                    : static_cast<int>(std::ceil(k));
+}
+
+// MSAC cost of a model, abandoned (returning +inf) once it exceeds `bound`.
+template <typename Estimator>
+double MsacCost(const Estimator& estimator, const typename Estimator::Model& model,
+                double squared_threshold, double bound) {
+  double cost = 0.0;
+  const std::size_t n = estimator.num_data();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double e = estimator.error(model, i);
+    cost += std::min(e * e, squared_threshold);
+    if (cost > bound) return std::numeric_limits<double>::infinity();
+  }
+  return cost;
+}
+
+template <typename Estimator>
+int CollectInliers(const Estimator& estimator, const typename Estimator::Model& model,
+                   double threshold, std::vector<int>* inliers) {
+  inliers->clear();
+  const std::size_t n = estimator.num_data();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (estimator.error(model, i) <= threshold) inliers->push_back(static_cast<int>(i));
+  }
+  return static_cast<int>(inliers->size());
+}
+
+}  // namespace internal
+
+inline void RansacOptions::Check() const {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("trigrav: RansacOptions: ") + what);
+  };
+  require(max_error > 0.0 && std::isfinite(max_error), "max_error must be positive and finite");
+  require(confidence > 0.0 && confidence < 1.0, "confidence must be in (0, 1)");
+  require(min_iterations >= 0, "min_iterations must be >= 0");
+  require(max_iterations >= 1 && max_iterations >= min_iterations,
+          "max_iterations must be >= max(1, min_iterations)");
+  require(local_optimization_rounds >= 0, "local_optimization_rounds must be >= 0");
+  require(local_optimization_threshold_multiplier >= 1.0 &&
+              std::isfinite(local_optimization_threshold_multiplier),
+          "local_optimization_threshold_multiplier must be >= 1 and finite");
+}
+
+template <typename Estimator>
+RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
+                                               const RansacOptions& options) {
+  using Model = typename Estimator::Model;
+  constexpr int kSampleSize = Estimator::kSampleSize;
+  options.Check();
+  RansacReport<Model> report;
+  const std::size_t n = estimator.num_data();
+  if (n < static_cast<std::size_t>(kSampleSize)) {
+    report.message = "fewer data (" + std::to_string(n) + ") than the minimal sample (" +
+                     std::to_string(kSampleSize) + ")";
+    return report;
+  }
+  const double squared_threshold = options.max_error * options.max_error;
+  std::mt19937_64 rng(options.seed);
+  std::array<int, kSampleSize> sample;
+  std::vector<Model> models;
+  std::vector<int> inliers, local_inliers;
+  inliers.reserve(n);
+  local_inliers.reserve(n);
+  double best_cost = std::numeric_limits<double>::infinity();
+  int best_inliers = 0;
+  int required = options.max_iterations;
+
+  // Scores a candidate; on improvement keeps it and updates the stopping criterion.
+  auto consider = [&](const Model& model) {
+    ++report.num_models_scored;
+    const double cost = internal::MsacCost(estimator, model, squared_threshold, best_cost);
+    if (!(cost < best_cost)) return false;
+    best_cost = cost;
+    report.model = model;
+    best_inliers = internal::CollectInliers(estimator, model, options.max_error, &inliers);
+    required = std::max(options.min_iterations,
+                        internal::RequiredIterations(static_cast<double>(best_inliers) / n,
+                                                     kSampleSize, options.confidence));
+    return true;
+  };
+
+  for (report.iterations = 0;
+       report.iterations < std::min(required, options.max_iterations); ++report.iterations) {
+    internal::DrawSample<kSampleSize>(static_cast<int>(n), &rng, &sample);
+    models.clear();
+    estimator.generate_models(sample, &models);
+    bool improved = false;
+    for (const Model& model : models) improved = consider(model) || improved;
+    if (!improved || !options.local_optimization) continue;
+    Model current = report.model;
+    for (int round = 0; round < options.local_optimization_rounds; ++round) {
+      const double fraction =
+          options.local_optimization_rounds > 1
+              ? static_cast<double>(round) / (options.local_optimization_rounds - 1)
+              : 1.0;
+      const double threshold =
+          options.max_error *
+          (options.local_optimization_threshold_multiplier -
+           (options.local_optimization_threshold_multiplier - 1.0) * fraction);
+      if (internal::CollectInliers(estimator, current, threshold, &local_inliers) < kSampleSize) {
+        break;
+      }
+      ++report.num_local_optimizations;
+      if (!estimator.refine_model(local_inliers, &current)) break;
+      consider(current);
+    }
+  }
+
+  if (!std::isfinite(best_cost) || best_inliers < kSampleSize) {
+    report.message = "no model explains at least a minimal sample";
+    return report;
+  }
+  report.msac_cost = best_cost;
+  report.num_inliers = best_inliers;
+  report.inlier_mask.assign(n, 0);
+  for (const int i : inliers) report.inlier_mask[i] = 1;
+  report.success = true;
+  return report;
+}
+
+}  // namespace trigrav
+
+#endif  // TRIGRAV_INITIALIZERS_RANSAC_H_

@@ -1,0 +1,60 @@
+#ifndef TRIGRAV_INITIALIZERS_ROBUST_THREE_VIEW_H_
+#define TRIGRAV_INITIALIZERS_ROBUST_THREE_VIEW_H_
+
+#include <string>
+#include <vector>
+
+#include "trigrav/initializers/camera_pose.h"
+#include "trigrav/initializers/ransac.h"
+#include "trigrav/initializers/three_view_observations.h"
+
+namespace trigrav {
+
+// The minimal solvers a robust estimate can be seeded with: the paper's methods and its baselines.
+enum class InitialSolver {
+  kTrifocal3pt,        // decoupled 3-point, gravity-aware (trifocal_3pt.h): the default
+  kTrifocal3ptSextic,  // the paper's 3-point system (3pt-Our-3view), gravity-aware
+  kTrifocal4pt,        // 4-point linear trifocal (4pt-Our-3view), gravity-aware
+  kTrifocalLinear,     // normalised linear trifocal tensor, 7 triplets (7pt-Hartley-3view)
+  kEssential5pt,       // Nister's five-point on pairs (1,2) and (1,3) (5pt-Nister-2view)
+  kEssential8pt,       // normalised eight-point on pairs (1,2) and (1,3) (8pt-Hartley-2view)
+};
+
+// "3pt", "3pt-sextic", "4pt", "7pt-linear", "5pt", "8pt".
+const char* InitialSolverName(InitialSolver solver);
+// Inverse of InitialSolverName; false for an unknown name.
+bool ParseInitialSolver(const std::string& name, InitialSolver* solver);
+// Triplets in a minimal sample of the method (3, 3, 4, 7, 5, 8).
+int MinimalSampleSize(InitialSolver solver);
+
+struct RobustThreeViewOptions {
+  InitialSolver solver = InitialSolver::kTrifocal3pt;
+  // ransac.max_error is the inlier threshold in pixels, the same for every method. Local
+  // optimisation re-estimates from the inliers with the method's own non-minimal solver: the 4-point
+  // solver for the gravity-aware methods, the eight-point solver for the two-view ones, the linear
+  // tensor for 7pt-linear.
+  RansacOptions ransac;
+};
+
+struct RobustThreeViewEstimate {
+  bool success = false;
+  std::string message;              // why not, when !success
+  ThreeViewPose pose;               // original camera frames, |cam2_from_cam1.Center()| = 1
+  std::vector<char> inliers;        // per triplet
+  int num_inliers = 0;
+  int iterations = 0;
+  int num_models_scored = 0;
+  int num_local_optimizations = 0;
+};
+
+// Robust three-view relative pose from pixel triplets with outliers: RANSAC (ransac.h) over the chosen
+// minimal solver, every method scored by the same three-view reprojection error in pixels
+// (three_view_error.h). Gravity is used by the gravity-aware methods only. Throws
+// std::invalid_argument for invalid observations or options; numerical failure (too few triplets,
+// no model) gives success == false with a message.
+RobustThreeViewEstimate EstimateThreeViewPoseRobust(const ThreeViewObservations& observations,
+                                                    const RobustThreeViewOptions& options);
+
+}  // namespace trigrav
+
+#endif  // TRIGRAV_INITIALIZERS_ROBUST_THREE_VIEW_H_

@@ -1,0 +1,51 @@
+#ifndef TRIGRAV_INITIALIZERS_THREE_VIEW_ERROR_H_
+#define TRIGRAV_INITIALIZERS_THREE_VIEW_ERROR_H_
+
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "trigrav/initializers/camera_pose.h"
+#include "trigrav/initializers/three_view_observations.h"
+
+namespace trigrav {
+
+// Multi-view midpoint: the point closest (least squares) to the rays from the centres c_k along the
+// unit directions d_k, all in reference (camera 1) coordinates (math note section 7):
+//   X = (sum_k (I - d_k d_k^T))^-1 sum_k (I - d_k d_k^T) c_k.
+// Returns false (X untouched) if the rays are parallel (singular system).
+bool TriangulateMidpoint(const std::array<Eigen::Vector3d, 3>& centers_in_ref,
+                         const std::array<Eigen::Vector3d, 3>& directions_in_ref,
+                         Eigen::Vector3d* point_in_ref);
+
+// The inlier error every trigrav robust estimator uses, whatever the method (math note section 7):
+// triangulate the triplet by the multi-view midpoint in the original (unaligned) frames, reproject
+// into all three views and take the largest pixel distance; +inf if the point is behind any camera or
+// cannot be triangulated. Unlike the largest pairwise Sampson error, it sees an outlier that slides
+// along its epipolar line when the three centres are collinear (straight driving).
+class ThreeViewReprojectionError {
+ public:
+  // Observations must pass ThreeViewObservations::Check().
+  explicit ThreeViewReprojectionError(const ThreeViewObservations& observations);
+
+  // A pose with what the error needs precomputed (rotations, centres).
+  struct PreparedPose {
+    std::array<Eigen::Matrix3d, 3> cam_from_ref;
+    std::array<Eigen::Vector3d, 3> center_in_ref;
+  };
+  static PreparedPose Prepare(const ThreeViewPose& pose);
+
+  // Largest reprojection error of triplet n in pixels.
+  double operator()(const PreparedPose& pose, std::size_t n) const;
+  std::size_t size() const { return unit_rays_[0].size(); }
+
+ private:
+  std::array<PinholeCamera, 3> cameras_;
+  std::array<std::vector<Eigen::Vector3d>, 3> unit_rays_;  // in each camera's own frame
+  std::array<std::vector<Eigen::Vector2d>, 3> pixels_;
+};
+
+}  // namespace trigrav
+
+#endif  // TRIGRAV_INITIALIZERS_THREE_VIEW_ERROR_H_

@@ -1,0 +1,87 @@
+#include "trigrav/initializers/essential_8pt.h"
+
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+#include "essential_decomposition.h"
+#include "solver_utils.h"
+
+namespace trigrav {
+namespace {
+
+constexpr std::size_t kMinPoints = 8;
+// Rays are dehomogenised only if all are within acos(0.1) = 84 deg of the optical axis.
+constexpr double kMinForwardCosine = 0.1;
+
+// Hartley's normalisation of one view, applied by Apply(): p = T (x / x_z), with T moving the
+// centroid to 0 and the mean distance to sqrt(2) in the z = 1 plane, when every ray points forward;
+// otherwise p = x / |x| and T = I.
+struct Normalisation {
+  Eigen::Matrix3d T = Eigen::Matrix3d::Identity();
+  bool dehomogenise = false;
+
+  explicit Normalisation(const std::vector<Eigen::Vector3d>& x) {
+    const std::size_t n = x.size();
+    dehomogenise = true;
+    for (std::size_t i = 0; i < n && dehomogenise; ++i) {
+      dehomogenise = x[i].z() > kMinForwardCosine * x[i].norm();
+    }
+    if (!dehomogenise) return;
+    Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+    for (std::size_t i = 0; i < n; ++i) centroid += x[i].hnormalized();
+    centroid /= static_cast<double>(n);
+    double mean_distance = 0.0;
+    for (std::size_t i = 0; i < n; ++i) mean_distance += (x[i].hnormalized() - centroid).norm();
+    mean_distance /= static_cast<double>(n);
+    // Coincident points: keep the translation, skip the scaling (the problem is degenerate anyway).
+    const double s = mean_distance > 0.0 ? std::sqrt(2.0) / mean_distance : 1.0;
+    T << s, 0.0, -s * centroid.x(), 0.0, s, -s * centroid.y(), 0.0, 0.0, 1.0;
+  }
+
+  Eigen::Vector3d Apply(const Eigen::Vector3d& x) const {
+    return dehomogenise ? Eigen::Vector3d(T * (x / x.z())) : Eigen::Vector3d(x.normalized());
+  }
+};
+
+}  // namespace
+
+int SolveEssential8pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
+                      std::vector<CameraPose>* solutions) {
+  internal::CheckPairs("SolveEssential8pt", kMinPoints, std::numeric_limits<std::size_t>::max(), x1,
+                       x2, solutions);
+  solutions->clear();
+  const std::size_t n = x1.size();
+
+  const Normalisation normalisation1(x1), normalisation2(x2);
+
+  // Triangular factor of the N x 9 system, streamed 9 rows at a time through [R; rows] (18 x 9).
+  constexpr int kChunk = 9;
+  Eigen::Matrix<double, 2 * kChunk, 9> stacked = Eigen::Matrix<double, 2 * kChunk, 9>::Zero();
+  for (std::size_t start = 0; start < n; start += kChunk) {
+    stacked.bottomRows<kChunk>().setZero();
+    for (std::size_t i = start; i < n && i < start + kChunk; ++i) {
+      const int row = kChunk + static_cast<int>(i - start);
+      const Eigen::Vector3d p1 = normalisation1.Apply(x1[i]);
+      const Eigen::Vector3d p2 = normalisation2.Apply(x2[i]);
+      for (int k = 0; k < 3; ++k) stacked.block<1, 3>(row, 3 * k) = p2[k] * p1.transpose();
+    }
+    stacked.topRows<kChunk>() = internal::TriangularFactor(stacked).topRows<kChunk>();
+  }
+  const Eigen::Matrix<double, 9, 9> R = stacked.topRows<kChunk>();
+  if (!R.allFinite()) return 0;
+  const Eigen::Matrix<double, 9, 1> e = internal::SmallestRightSingularVectorOfTriangular<9>(R);
+  const Eigen::Matrix3d E_normalised =
+      Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(e.data());
+  // x2^T E x1 = (T2 x2)^T E_normalised (T1 x1); the projection to the essential manifold happens in
+  // PoseFromEssential (singular values replaced by (1, 1, 0)).
+  const Eigen::Matrix3d E = normalisation2.T.transpose() * E_normalised * normalisation1.T;
+
+  CameraPose pose;
+  const int in_front = internal::PoseFromEssential(E, x1, x2, &pose);
+  if (2 * static_cast<std::size_t>(in_front) <= n) return 0;
+  solutions->push_back(pose);
+  return 1;
+}
+
+}  // namespace trigrav

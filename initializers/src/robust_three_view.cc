@@ -1,0 +1,271 @@
+#include "trigrav/initializers/robust_three_view.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "solver_utils.h"
+#include "trigrav/initializers/essential_5pt.h"
+#include "trigrav/initializers/essential_8pt.h"
+#include "trigrav/initializers/gravity.h"
+#include "trigrav/initializers/three_view_error.h"
+#include "trigrav/initializers/trifocal_3pt.h"
+#include "trigrav/initializers/trifocal_4pt.h"
+#include "trigrav/initializers/trifocal_linear.h"
+
+namespace trigrav {
+namespace {
+
+using Rays = std::vector<Eigen::Vector3d>;
+using ViewRays = std::array<Rays, 3>;
+
+// What every method's estimator shares: the rays of each view, raw (K^-1 pixel) and gravity-aligned,
+// and the common inlier error.
+struct TripletData {
+  explicit TripletData(const ThreeViewObservations& observations) : error(observations) {
+    for (int k = 0; k < 3; ++k) {
+      alignment[k] = GravityAlignmentFromGravity(observations.gravity_in_cam[k]);
+      raw[k].reserve(observations.size());
+      for (const Eigen::Vector2d& pixel : observations.pixels[k]) {
+        raw[k].push_back(observations.cameras[k].Ray(pixel));
+      }
+      aligned[k] = AlignRays(alignment[k], raw[k]);
+    }
+  }
+  ViewRays raw, aligned;
+  std::array<Eigen::Matrix3d, 3> alignment;
+  ThreeViewReprojectionError error;
+};
+
+// Reused storage of the solvers' outputs, so the RANSAC loop does not allocate once warm.
+struct Workspace {
+  std::vector<ThreeViewPose> three_view;
+  std::vector<CameraPose> pair12, pair13;
+};
+
+// Three-view models of a two-view method (math note section 7): every combination of a (1,2) and a
+// (1,3) solution, with the centre of camera 3 rescaled by kappa = <l2, l3> / <l3, l3>, l_k the view-1
+// depths of the triplets from pair (1,k) alone. Combinations with kappa <= 0 are inconsistent.
+void CombinePairs(const ViewRays& rays, const std::vector<CameraPose>& pair12,
+                  const std::vector<CameraPose>& pair13, std::vector<ThreeViewPose>* poses) {
+  for (const CameraPose& cam2 : pair12) {
+    const Eigen::Vector3d center2 = cam2.Center();
+    for (const CameraPose& cam3 : pair13) {
+      const Eigen::Vector3d center3 = cam3.Center();
+      double cross = 0.0, squared = 0.0;
+      for (std::size_t n = 0; n < rays[0].size(); ++n) {
+        const double depth2 = internal::ViewOneDepth(rays[0][n], rays[1][n], cam2.R, center2);
+        const double depth3 = internal::ViewOneDepth(rays[0][n], rays[2][n], cam3.R, center3);
+        cross += depth2 * depth3;
+        squared += depth3 * depth3;
+      }
+      const double kappa = cross / squared;
+      if (!(kappa > 0.0) || !std::isfinite(kappa)) continue;
+      ThreeViewPose pose;
+      pose.cam2_from_cam1 = cam2;
+      pose.cam3_from_cam1.R = cam3.R;
+      pose.cam3_from_cam1.t = kappa * cam3.t;
+      poses->push_back(pose);
+    }
+  }
+}
+
+// Method policies. Minimal() and Refine() append three-view poses in the original frames from the
+// selected triplets' rays (aligned ones if kAligned); Refine() gets all inliers of a model.
+template <int (*kSolveAligned)(const Rays&, const Rays&, const Rays&, std::vector<ThreeViewPose>*)>
+void SolveGravityAware(const TripletData& data, const ViewRays& aligned, Workspace* work,
+                       std::vector<ThreeViewPose>* poses) {
+  kSolveAligned(aligned[0], aligned[1], aligned[2], &work->three_view);
+  for (const ThreeViewPose& pose : work->three_view) {
+    poses->push_back(
+        UnalignThreeViewPose(pose, data.alignment[0], data.alignment[1], data.alignment[2]));
+  }
+}
+
+template <int (*kSolvePair)(const Rays&, const Rays&, std::vector<CameraPose>*)>
+void SolveTwoViewPairs(const TripletData&, const ViewRays& raw, Workspace* work,
+                       std::vector<ThreeViewPose>* poses) {
+  kSolvePair(raw[0], raw[1], &work->pair12);
+  kSolvePair(raw[0], raw[2], &work->pair13);
+  CombinePairs(raw, work->pair12, work->pair13, poses);
+}
+
+void SolveLinear(const TripletData&, const ViewRays& raw, Workspace* work,
+                 std::vector<ThreeViewPose>* poses) {
+  SolveTrifocalLinear(raw[0], raw[1], raw[2], &work->three_view);
+  poses->insert(poses->end(), work->three_view.begin(), work->three_view.end());
+}
+
+// The aligned-frame overloads, as plain function pointers.
+int Trifocal3pt(const Rays& x1, const Rays& x2, const Rays& x3, std::vector<ThreeViewPose>* out) {
+  return SolveTrifocal3pt(x1, x2, x3, out);
+}
+int Trifocal3ptSextic(const Rays& x1, const Rays& x2, const Rays& x3,
+                      std::vector<ThreeViewPose>* out) {
+  return SolveTrifocal3ptSextic(x1, x2, x3, out);
+}
+int Trifocal4pt(const Rays& x1, const Rays& x2, const Rays& x3, std::vector<ThreeViewPose>* out) {
+  return SolveTrifocal4pt(x1, x2, x3, out);
+}
+
+using SolveFunction = void (*)(const TripletData&, const ViewRays&, Workspace*,
+                               std::vector<ThreeViewPose>*);
+
+template <int kSize, bool kAlignedRays, SolveFunction kMinimal, int kMinRefine, SolveFunction kRefine>
+struct Method {
+  static constexpr int kSampleSize = kSize;
+  static constexpr bool kAligned = kAlignedRays;
+  static constexpr int kMinTripletsToRefine = kMinRefine;
+  static void Minimal(const TripletData& d, const ViewRays& r, Workspace* w,
+                      std::vector<ThreeViewPose>* p) {
+    kMinimal(d, r, w, p);
+  }
+  static void Refine(const TripletData& d, const ViewRays& r, Workspace* w,
+                     std::vector<ThreeViewPose>* p) {
+    kRefine(d, r, w, p);
+  }
+};
+
+using Method3pt = Method<3, true, SolveGravityAware<Trifocal3pt>, 4, SolveGravityAware<Trifocal4pt>>;
+using Method3ptSextic =
+    Method<3, true, SolveGravityAware<Trifocal3ptSextic>, 4, SolveGravityAware<Trifocal4pt>>;
+using Method4pt = Method<4, true, SolveGravityAware<Trifocal4pt>, 4, SolveGravityAware<Trifocal4pt>>;
+using Method7ptLinear = Method<7, false, SolveLinear, 7, SolveLinear>;
+using Method5pt =
+    Method<5, false, SolveTwoViewPairs<SolveEssential5pt>, 8, SolveTwoViewPairs<SolveEssential8pt>>;
+using Method8pt =
+    Method<8, false, SolveTwoViewPairs<SolveEssential8pt>, 8, SolveTwoViewPairs<SolveEssential8pt>>;
+
+struct ScoredPose {
+  ThreeViewPose pose;
+  ThreeViewReprojectionError::PreparedPose prepared;
+};
+
+// The RANSAC estimator concept of ransac.h for one method.
+template <typename M>
+class Estimator {
+ public:
+  using Model = ScoredPose;
+  static constexpr int kSampleSize = M::kSampleSize;
+
+  explicit Estimator(const TripletData& data) : data_(data) {}
+
+  std::size_t num_data() const { return data_.error.size(); }
+
+  void generate_models(const std::array<int, kSampleSize>& sample, std::vector<Model>* models) const {
+    Solve(sample, &M::Minimal);
+    for (const ThreeViewPose& pose : poses_) {
+      if (pose.IsFinite()) models->push_back({pose, ThreeViewReprojectionError::Prepare(pose)});
+    }
+  }
+
+  double error(const Model& model, std::size_t i) const { return data_.error(model.prepared, i); }
+
+  bool refine_model(const std::vector<int>& inliers, Model* model) const {
+    if (static_cast<int>(inliers.size()) < M::kMinTripletsToRefine) return false;
+    Solve(inliers, &M::Refine);
+    for (const ThreeViewPose& pose : poses_) {
+      if (pose.IsFinite()) {
+        *model = {pose, ThreeViewReprojectionError::Prepare(pose)};
+        return true;
+      }
+    }
+    return false;
+  }
+
+ private:
+  template <typename Indices>
+  void Solve(const Indices& indices, SolveFunction solve) const {
+    const ViewRays& source = M::kAligned ? data_.aligned : data_.raw;
+    for (int k = 0; k < 3; ++k) {
+      selected_[k].clear();
+      for (const int i : indices) selected_[k].push_back(source[k][i]);
+    }
+    poses_.clear();
+    solve(data_, selected_, &work_, &poses_);
+  }
+
+  const TripletData& data_;
+  // Scratch storage reused across samples; an Estimator serves one RANSAC call on one thread.
+  mutable ViewRays selected_;
+  mutable Workspace work_;
+  mutable std::vector<ThreeViewPose> poses_;
+};
+
+template <typename M>
+RobustThreeViewEstimate Run(const TripletData& data, const RansacOptions& options) {
+  const RansacReport<ScoredPose> report = Ransac(Estimator<M>(data), options);
+  RobustThreeViewEstimate estimate;
+  estimate.success = report.success;
+  estimate.message = report.message;
+  estimate.iterations = report.iterations;
+  estimate.num_models_scored = report.num_models_scored;
+  estimate.num_local_optimizations = report.num_local_optimizations;
+  if (report.success) {
+    estimate.pose = report.model.pose;
+    estimate.inliers = report.inlier_mask;
+    estimate.num_inliers = report.num_inliers;
+  }
+  return estimate;
+}
+
+struct SolverInfo {
+  InitialSolver solver;
+  const char* name;
+  int sample_size;
+};
+constexpr std::array<SolverInfo, 6> kSolvers = {{
+    {InitialSolver::kTrifocal3pt, "3pt", 3},
+    {InitialSolver::kTrifocal3ptSextic, "3pt-sextic", 3},
+    {InitialSolver::kTrifocal4pt, "4pt", 4},
+    {InitialSolver::kTrifocalLinear, "7pt-linear", 7},
+    {InitialSolver::kEssential5pt, "5pt", 5},
+    {InitialSolver::kEssential8pt, "8pt", 8},
+}};
+
+const SolverInfo& Info(InitialSolver solver) {
+  for (const SolverInfo& info : kSolvers) {
+    if (info.solver == solver) return info;
+  }
+  throw std::invalid_argument("trigrav: unknown InitialSolver value");
+}
+
+}  // namespace
+
+const char* InitialSolverName(InitialSolver solver) { return Info(solver).name; }
+
+int MinimalSampleSize(InitialSolver solver) { return Info(solver).sample_size; }
+
+bool ParseInitialSolver(const std::string& name, InitialSolver* solver) {
+  for (const SolverInfo& info : kSolvers) {
+    if (name == info.name) {
+      *solver = info.solver;
+      return true;
+    }
+  }
+  return false;
+}
+
+RobustThreeViewEstimate EstimateThreeViewPoseRobust(const ThreeViewObservations& observations,
+                                                    const RobustThreeViewOptions& options) {
+  observations.Check();
+  options.ransac.Check();
+  const TripletData data(observations);
+  switch (options.solver) {
+    case InitialSolver::kTrifocal3pt:
+      return Run<Method3pt>(data, options.ransac);
+    case InitialSolver::kTrifocal3ptSextic:
+      return Run<Method3ptSextic>(data, options.ransac);
+    case InitialSolver::kTrifocal4pt:
+      return Run<Method4pt>(data, options.ransac);
+    case InitialSolver::kTrifocalLinear:
+      return Run<Method7ptLinear>(data, options.ransac);
+    case InitialSolver::kEssential5pt:
+      return Run<Method5pt>(data, options.ransac);
+    case InitialSolver::kEssential8pt:
+      return Run<Method8pt>(data, options.ransac);
+  }
+  throw std::invalid_argument("trigrav: EstimateThreeViewPoseRobust: unknown solver");
+}
+
+}  // namespace trigrav

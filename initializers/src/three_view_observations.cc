@@ -1,0 +1,41 @@
+#include "trigrav/initializers/three_view_observations.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace trigrav {
+
+bool PinholeCamera::IsValid() const {
+  return fx > 0.0 && fy > 0.0 && std::isfinite(fx) && std::isfinite(fy) && std::isfinite(cx) &&
+         std::isfinite(cy);
+}
+
+void ThreeViewObservations::Check() const {
+  auto fail = [](const std::string& what) {
+    throw std::invalid_argument("trigrav: ThreeViewObservations: " + what);
+  };
+  for (int k = 0; k < 3; ++k) {
+    if (!cameras[k].IsValid()) {
+      fail("camera " + std::to_string(k + 1) +
+           " needs positive, finite focal lengths and a finite principal point");
+    }
+    const double g = gravity_in_cam[k].norm();
+    if (!gravity_in_cam[k].allFinite() || !(g > 0.0)) {
+      fail("gravity_in_cam[" + std::to_string(k) + "] is zero or not finite");
+    }
+    if (pixels[k].size() != pixels[0].size()) {
+      std::ostringstream message;
+      message << "pixels of the three views differ in size (" << pixels[0].size() << ", "
+              << pixels[1].size() << ", " << pixels[2].size() << ")";
+      fail(message.str());
+    }
+    for (std::size_t n = 0; n < pixels[k].size(); ++n) {
+      if (!pixels[k][n].allFinite()) {
+        fail("pixels[" + std::to_string(k) + "][" + std::to_string(n) + "] is not finite");
+      }
+    }
+  }
+}
+
+}  // namespace trigrav

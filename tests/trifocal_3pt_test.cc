@@ -14,6 +14,7 @@
 #include "trigrav/initializers/gravity.h"
 #include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/synthetic_scene.h"
+#include "solver_test_utils.h"
 
 namespace trigrav {
 namespace {
@@ -84,11 +85,7 @@ int ClosestCandidate(const ThreeViewPose& truth, const std::vector<ThreeViewPose
   return best;
 }
 
-double Median(std::vector<double> values) {
-  const auto middle = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
+using testing_utils::Median;
 
 // The ground truth of a scene in gravity-aligned frames (the inverse of UnalignThreeViewPose).
 ThreeViewPose AlignedTruth(const ThreeViewPose& truth,

@@ -12,6 +12,7 @@
 #include "trigrav/initializers/gravity.h"
 #include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/synthetic_scene.h"
+#include "solver_test_utils.h"
 
 namespace trigrav {
 namespace {
@@ -101,25 +102,13 @@ TEST(Trifocal4pt, PaperVariantsExactNoiseFree) {
 }
 
 double MedianRotationErrorDeg(const Trifocal4ptOptions& options, int num_points, double noise_px) {
-  std::mt19937_64 rng(5);
   SyntheticSceneOptions scene_options;
   scene_options.pixel_noise_px = noise_px;
   scene_options.num_points = num_points;
-  std::vector<double> errors;
-  for (int trial = 0; trial < 300; ++trial) {
-    const SyntheticScene scene = GenerateSyntheticScene(scene_options, &rng);
-    std::vector<ThreeViewPose> solutions;
-    if (SolveScene(scene, options, &solutions) == 0) {
-      errors.push_back(180.0);
-      continue;
-    }
-    EXPECT_TRUE(solutions[0].IsFinite());
-    const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(scene.ground_truth, solutions[0]);
-    errors.push_back(e.rotation_deg[0]);
-    errors.push_back(e.rotation_deg[1]);
-  }
-  std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
-  return errors[errors.size() / 2];
+  return testing_utils::MedianFirstSolutionRotationErrorDeg(
+      scene_options, 5, 300, [&options](const SyntheticScene& scene, std::vector<ThreeViewPose>* out) {
+        return SolveScene(scene, options, out);
+      });
 }
 
 // With noise the error grows smoothly with the noise level and stays in the range measured for this

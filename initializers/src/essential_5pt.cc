@@ -1,12 +1,11 @@
 #include "trigrav/initializers/essential_5pt.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
-#include <algorithm>
 #include <limits>
 
 #include <Eigen/Cholesky>
-
 
 #include "essential_decomposition.h"
 #include "solver_utils.h"
@@ -16,10 +15,10 @@ namespace {
 
 constexpr int kNumPoints = 5;
 
-// Monomials in (x, y, z) of degree <= 3 as exponent triples: the 10 cubic ones first, then the 10 of
-// degree <= 2, the quotient-ring basis (x^2, xy, xz, y^2, yz, z^2, x, y, z, 1). The last 4 are the
-// linear monomials (x, y, z, 1), the last 10 the quadratic ones: a Linear or Quadratic below stores
-// its coefficients in that order.
+// Monomials in (x, y, z) of degree <= 3 as exponent triples: the 10 cubic ones first, then the 10
+// of degree <= 2, the quotient-ring basis (x^2, xy, xz, y^2, yz, z^2, x, y, z, 1). The last 4 are
+// the linear monomials (x, y, z, 1), the last 10 the quadratic ones: a Linear or Quadratic below
+// stores its coefficients in that order.
 constexpr int kMonomials[20][3] = {
     {3, 0, 0}, {2, 1, 0}, {2, 0, 1}, {1, 2, 0}, {1, 1, 1}, {1, 0, 2}, {0, 3, 0},
     {0, 2, 1}, {0, 1, 2}, {0, 0, 3}, {2, 0, 0}, {1, 1, 0}, {1, 0, 1}, {0, 2, 0},
@@ -39,7 +38,8 @@ constexpr int MonomialIndex(int a, int b, int c) {
   return -1;
 }
 
-// Where the product of two monomials lands: linear x linear -> quadratic, quadratic x linear -> cubic.
+// Where the product of two monomials lands: linear x linear -> quadratic, quadratic x linear ->
+// cubic.
 struct ProductTables {
   int linear_linear[4][4];
   int quadratic_linear[10][4];
@@ -88,18 +88,22 @@ Quadratic Combine(double alpha, const Quadratic& a, double beta, const Quadratic
   return result;
 }
 
-// Orthonormal basis (columns) of the null space of the 5 x 9 epipolar system: the last 4 columns of Q
-// in A^T = Q R, by 5 Householder reflections (unblocked, fixed size, no allocation).
-Eigen::Matrix<double, 9, 4> NullSpaceBasis(const Eigen::Matrix<double, kNumPoints, 9>& A) {
+// Orthonormal basis (columns) of the null space of the 5 x 9 epipolar system: the last 4 columns of
+// Q in A^T = Q R, by 5 Householder reflections (unblocked, fixed size, no allocation). Returns
+// false (basis not written) if A has (numerically) rank < 5, e.g. coincident points: then the null
+// space has more than 4 dimensions and E is not determined.
+bool NullSpaceBasis(const Eigen::Matrix<double, kNumPoints, 9>& A,
+                    Eigen::Matrix<double, 9, 4>* basis) {
   Eigen::Matrix<double, 9, kNumPoints> M = A.transpose();
   std::array<Eigen::Matrix<double, 9, 1>, kNumPoints> reflectors;
-  std::array<double, kNumPoints> betas;
+  std::array<double, kNumPoints> betas, diagonal;
   for (int j = 0; j < kNumPoints; ++j) {
     // H_j = I - beta v v^T maps column j (rows j..8) onto a multiple of e_j.
     Eigen::Matrix<double, 9, 1> v = M.col(j);
     v.head(j).setZero();
     const double x0 = v[j];
     const double norm = v.norm();
+    diagonal[j] = norm;  // |R(j, j)|
     v[j] = x0 - (x0 <= 0.0 ? norm : -norm);
     const double v_squared = v.squaredNorm();
     const double beta = v_squared > 0.0 ? 2.0 / v_squared : 0.0;
@@ -107,17 +111,23 @@ Eigen::Matrix<double, 9, 4> NullSpaceBasis(const Eigen::Matrix<double, kNumPoint
     reflectors[j] = v;
     betas[j] = beta;
   }
-  // Q = H_0 ... H_4, applied to e_5..e_8.
-  Eigen::Matrix<double, 9, 4> basis = Eigen::Matrix<double, 9, 4>::Zero();
-  basis.bottomRows<4>().setIdentity();
-  for (int j = kNumPoints - 1; j >= 0; --j) {
-    basis -= (betas[j] * reflectors[j]) * (reflectors[j].transpose() * basis);
+  // A triangular R has at least as many zero diagonal entries as its rank deficiency, and
+  // R(4, 4) = 0 already when the rows are merely dependent, so any tiny |R(j, j)| flags rank < 5.
+  const double largest = *std::max_element(diagonal.begin(), diagonal.end());
+  for (const double d : diagonal) {
+    if (!(d > 1e-10 * largest)) return false;
   }
-  return basis;
+  // Q = H_0 ... H_4, applied to e_5..e_8.
+  basis->setZero();
+  basis->bottomRows<4>().setIdentity();
+  for (int j = kNumPoints - 1; j >= 0; --j) {
+    *basis -= (betas[j] * reflectors[j]) * (reflectors[j].transpose() * *basis);
+  }
+  return true;
 }
 
-// The 10 x 20 coefficient matrix of det(E) = 0 (row 0) and 2 E E^T E - tr(E E^T) E = 0 (rows 1-9) for
-// E = x X + y Y + z Z + W, whose entries E_ij are the columns of `basis` at row 3 i + j.
+// The 10 x 20 coefficient matrix of det(E) = 0 (row 0) and 2 E E^T E - tr(E E^T) E = 0 (rows 1-9)
+// for E = x X + y Y + z Z + W, whose entries E_ij are the columns of `basis` at row 3 i + j.
 Eigen::Matrix<double, 10, 20> ConstraintMatrix(const Eigen::Matrix<double, 9, 4>& basis) {
   Linear E[3][3];
   for (int i = 0; i < 3; ++i) {
@@ -149,7 +159,7 @@ Eigen::Matrix<double, 10, 20> ConstraintMatrix(const Eigen::Matrix<double, 9, 4>
   Quadratic Lambda[3][3];
   for (int i = 0; i < 3; ++i) {
     for (int k = 0; k < 3; ++k) {
-      Lambda[i][k] = i == k ? Combine(2.0, EEt[i][k], -1.0, trace) : Combine(2.0, EEt[i][k], 0.0, trace);
+      Lambda[i][k] = Combine(2.0, EEt[i][k], i == k ? -1.0 : 0.0, trace);
     }
   }
   for (int i = 0; i < 3; ++i) {
@@ -167,7 +177,8 @@ template <int Degree>
 using PolynomialZ = std::array<double, Degree + 1>;
 
 template <int DegreeA, int DegreeB>
-PolynomialZ<DegreeA + DegreeB> MultiplyZ(const PolynomialZ<DegreeA>& a, const PolynomialZ<DegreeB>& b) {
+PolynomialZ<DegreeA + DegreeB> MultiplyZ(const PolynomialZ<DegreeA>& a,
+                                         const PolynomialZ<DegreeB>& b) {
   PolynomialZ<DegreeA + DegreeB> product{};
   for (int i = 0; i <= DegreeA; ++i) {
     for (int j = 0; j <= DegreeB; ++j) product[i + j] += a[i] * b[j];
@@ -185,8 +196,8 @@ PolynomialZ<Degree> SubtractZ(const PolynomialZ<Degree>& a, const PolynomialZ<De
 // Nister's hidden-variable form (Nister 2004, section 3.2): after Gauss-Jordan elimination of the
 // monomials below, each pair (x^2 z, x^2), (y^2 z, y^2), (x y z, x y) gives <row with z> - z <row
 // without z>, an equation [x, y, 1] . (b_x(z), b_y(z), b_1(z)) = 0 with degrees 3, 3, 4. The three
-// form the 3 x 3 matrix B(z); det B(z) = 0 is the degree-10 polynomial in z, and (x, y, 1) spans the
-// null space of B(z) at each root.
+// form the 3 x 3 matrix B(z); det B(z) = 0 is the degree-10 polynomial in z, and (x, y, 1) spans
+// the null space of B(z) at each root.
 // Columns of the 10 x 20 system, eliminated monomials first (x^3, y^3, x^2y, xy^2, x^2z, x^2, y^2z,
 // y^2, xyz, xy), then (xz^2, xz, x, yz^2, yz, y, z^3, z^2, z, 1), as indices into kMonomials.
 constexpr std::array<int, 20> kNisterOrder = {0,  6,  1,  3,  2,  10, 7,  13, 4,  11,
@@ -220,8 +231,8 @@ struct HiddenVariableMatrix {
   }
 };
 
-// Gauss-Jordan elimination with partial pivoting of the 10 x 20 system in kNisterOrder, then the rows
-// of the three pairs combined into B(z). Returns false if the eliminated block is singular.
+// Gauss-Jordan elimination with partial pivoting of the 10 x 20 system in kNisterOrder, then the
+// rows of the three pairs combined into B(z). Returns false if the eliminated block is singular.
 bool MakeHiddenVariableMatrix(const Eigen::Matrix<double, 10, 20>& C, HiddenVariableMatrix* B) {
   std::array<std::array<double, 20>, 10> G;
   for (int r = 0; r < 10; ++r) {
@@ -260,7 +271,8 @@ bool MakeHiddenVariableMatrix(const Eigen::Matrix<double, 10, 20>& C, HiddenVari
 using Coefficients = std::array<double, 11>;
 
 // Value, first and second derivative of c[0] + ... + c[degree] t^degree at t (Horner).
-double EvaluateWithDerivatives(const double* c, int degree, double t, double* first, double* second) {
+double EvaluateWithDerivatives(const double* c, int degree, double t, double* first,
+                               double* second) {
   double value = c[degree];
   double d1 = 0.0, d2 = 0.0;
   for (int i = degree - 1; i >= 0; --i) {
@@ -281,11 +293,12 @@ double Evaluate(const double* c, int degree, double t) {
 
 // The root of the polynomial (degree n) in [lo, hi], which holds exactly one root and across which
 // the polynomial changes sign, by Laguerre's method safeguarded with bisection (a step leaving the
-// current bracket is replaced by its midpoint). Laguerre's step n / (G +- sqrt((n - 1)(n H - G^2))),
-// G = p'/p, H = G^2 - p''/p, is exact for (t - r)^n and converges cubically to a simple root, so it also
-// comes in quickly from a distant start, where Newton crawls by factors (1 - 1/n); Newton's step is
-// used if the square root is not real. Starts from the secant of the bracket (regula falsi); stops
-// once a step is below tolerance * max(1, |x|).
+// current bracket is replaced by its midpoint). Laguerre's step
+// n / (G +- sqrt((n - 1)(n H - G^2))), G = p'/p, H = G^2 - p''/p, is exact for (t - r)^n and
+// converges cubically to a simple root, so it also comes in quickly from a distant start, where
+// Newton crawls by factors (1 - 1/n); Newton's step is used if the square root is not real. Starts
+// from the secant of the bracket (regula falsi); stops once a step is below
+// tolerance * max(1, |x|).
 double RootInBracket(const double* c, int degree, double lo, double hi, double value_lo,
                      double value_hi, double tolerance) {
   const bool increasing = value_lo < 0.0;
@@ -321,8 +334,8 @@ double RootInBracket(const double* c, int degree, double lo, double hi, double v
 constexpr double kRootTolerance = 1e-15;
 
 // Real roots in [-1, 1] of the monic polynomial p of degree n whose roots all lie in [-1, 1], by
-// Sturm sequences as in Nister (2004): p_0 = p, p_1 = p', p_{k+1} = -(p_{k-1} mod p_k); the number of
-// roots in (a, b] is the drop in sign changes along the sequence from a to b. Bisection isolates
+// Sturm sequences as in Nister (2004): p_0 = p, p_1 = p', p_{k+1} = -(p_{k-1} mod p_k); the number
+// of roots in (a, b] is the drop in sign changes along the sequence from a to b. Bisection isolates
 // them, RootInBracket refines them. The remainder chain can lose precision; the result is flagged
 // inconsistent (*consistent = false, to be redone by DerivativeRoots) if an isolated interval shows
 // no sign change of p, a cluster cannot be separated, or the count has not the parity of n (complex
@@ -407,11 +420,11 @@ int SturmRoots(const Coefficients& p, int n, std::array<double, 10>* roots, bool
   return count;
 }
 
-// Real roots in [-1, 1] of the monic polynomial p of degree n whose roots all lie in [-1, 1], without
-// a derived sequence (slower than SturmRoots, robust): the real roots of p^(k+1) split [-1, 1] into
-// intervals on which p^(k) is monotone, so each interval holds a root of p^(k) exactly when p^(k)
-// changes sign across it; from the linear p^(n-1) down to p (by Gauss-Lucas all these roots lie in
-// [-1, 1] too). A double root without a sign change is missed.
+// Real roots in [-1, 1] of the monic polynomial p of degree n whose roots all lie in [-1, 1],
+// without a derived sequence (slower than SturmRoots, robust): the real roots of p^(k+1) split
+// [-1, 1] into intervals on which p^(k) is monotone, so each interval holds a root of p^(k) exactly
+// when p^(k) changes sign across it; from the linear p^(n-1) down to p (by Gauss-Lucas all these
+// roots lie in [-1, 1] too). A double root without a sign change is missed.
 int DerivativeRoots(const Coefficients& p, int n, std::array<double, 10>* roots) {
   // derivatives[k] = p^(k), scaled to be monic (a constant factor does not move roots).
   std::array<Coefficients, 10> derivatives;
@@ -453,9 +466,9 @@ int DerivativeRoots(const Coefficients& p, int n, std::array<double, 10>* roots)
 // Real roots of c[0] + ... + c[10] z^10 (Nister's degree-10 polynomial). Leading coefficients below
 // 1e-14 of the largest are dropped (roots beyond ~1e14^(1/k)). The polynomial is made monic and
 // balanced, z = s u with s = Fujiwara's bound 2 max_i |a_(n-i)|^(1/i) (|a_0 / 2| for i = n), so all
-// roots u lie in [-1, 1] and the coefficients are O(1): without the balancing the Sturm chain failed
-// in 2 % of noise-free scenes, with it in 0.005 %, which the consistency checks send to the robust
-// but three times slower DerivativeRoots. Returns the count.
+// roots u lie in [-1, 1] and the coefficients are O(1): without the balancing the Sturm chain gave
+// wrong roots in about 2 % of noise-free scenes, with it in about 0.005 %, which the consistency
+// checks send to the robust but three times slower DerivativeRoots. Returns the count.
 int RealRootsDegreeTen(const PolynomialZ<10>& c, std::array<double, 10>* roots) {
   double largest = 0.0;
   for (const double value : c) largest = std::max(largest, std::abs(value));
@@ -483,11 +496,11 @@ int RealRootsDegreeTen(const PolynomialZ<10>& c, std::array<double, 10>* roots) 
   return count;
 }
 
-// Gauss-Newton on the 10 cubic constraints C m(x, y, z) = 0 (m the 20 monomials of kMonomials): polishes
-// a root read from the degree-10 polynomial, whose coefficients and the null vector of B(z) lose
-// precision when roots are close. A step is kept only if it lowers the residual; iterates (up to
-// max_iterations) only while the steps are above 1e-9 relative, below which one step has already
-// reached the rounding level (quadratic convergence).
+// Gauss-Newton on the 10 cubic constraints C m(x, y, z) = 0 (m the 20 monomials of kMonomials):
+// polishes a root read from the degree-10 polynomial, whose coefficients and the null vector of
+// B(z) lose precision when roots are close. A step is kept only if it lowers the residual; iterates
+// (up to max_iterations) only while the steps are above 1e-9 relative, below which one step has
+// already reached the rounding level (quadratic convergence).
 void PolishRoot(const Eigen::Matrix<double, 10, 20>& C, int max_iterations, Eigen::Vector3d* xyz) {
   // Residual C m(v) and, if J is not null, its Jacobian C dm/dv.
   auto evaluate = [&C](const Eigen::Vector3d& v, Eigen::Matrix<double, 10, 3>* J) {
@@ -515,7 +528,13 @@ void PolishRoot(const Eigen::Matrix<double, 10, 20>& C, int max_iterations, Eige
     return Eigen::Matrix<double, 10, 1>(C.lazyProduct(m));
   };
   Eigen::Matrix<double, 10, 3> J;
-  Eigen::Matrix<double, 10, 1> r = evaluate(*xyz, &J);
+  Eigen::Matrix<double, 10, 1> r = evaluate(*xyz, nullptr);
+  // Most roots arrive accurate: skip the Jacobian when the residual is already at the rounding
+  // level of C m (1e-13 relative to |C| |m|, with |m| >= 1 since m contains the monomial 1).
+  const double magnitude =
+      C.cwiseAbs().maxCoeff() * std::max(1.0, xyz->squaredNorm() * xyz->norm());
+  if (r.cwiseAbs().maxCoeff() < 1e-13 * magnitude) return;
+  r = evaluate(*xyz, &J);
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     const Eigen::Vector3d step = (J.transpose() * J).ldlt().solve(-J.transpose() * r);
     if (!step.allFinite()) return;
@@ -530,16 +549,18 @@ void PolishRoot(const Eigen::Matrix<double, 10, 20>& C, int max_iterations, Eige
   }
 }
 
-// Minimum relative gap between two real roots z below which the hidden-variable form is retried with
-// the roles of x and z swapped (see EssentialCandidates).
+// Minimum relative gap between two real roots z below which the hidden-variable form is retried
+// with the roles of x and z swapped (see EssentialCandidates).
 constexpr double kCloseRootGap = 1e-4;
 
 // The real solutions vec(E) = x X + y Y + z Z + W (X, Y, Z, W the columns of basis) of the 10
 // constraints, through Nister's degree-10 polynomial in z. Sets *close_roots if two roots z are
-// within kCloseRootGap (relative) of each other: two solutions that (nearly) share z make B(z) nearly
-// rank 1 there, so the roots and their (x, y) lose most of their precision. Returns the count.
+// within kCloseRootGap (relative) of each other: two solutions that (nearly) share z make B(z)
+// nearly rank 1 there, so the roots and their (x, y) lose most of their precision. Returns the
+// count.
 int EssentialCandidates(const Eigen::Matrix<double, 9, 4>& basis,
-                        std::array<Eigen::Matrix<double, 9, 1>, 10>* essentials, bool* close_roots) {
+                        std::array<Eigen::Matrix<double, 9, 1>, 10>* essentials,
+                        bool* close_roots) {
   *close_roots = false;
   const Eigen::Matrix<double, 10, 20> C = ConstraintMatrix(basis);
   if (!C.allFinite()) return 0;
@@ -571,8 +592,8 @@ int EssentialCandidates(const Eigen::Matrix<double, 9, 4>& basis,
 
 }  // namespace
 
-int SolveEssential5pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
-                      std::vector<CameraPose>* solutions) {
+int SolveEssential5pt(const std::vector<Eigen::Vector3d>& x1,
+                      const std::vector<Eigen::Vector3d>& x2, std::vector<CameraPose>* solutions) {
   internal::CheckPairs("SolveEssential5pt", kNumPoints, kNumPoints, x1, x2, solutions);
   solutions->clear();
 
@@ -584,7 +605,8 @@ int SolveEssential5pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<
     const Eigen::Vector3d b = x2[n].normalized();
     for (int i = 0; i < 3; ++i) A.block<1, 3>(n, 3 * i) = b[i] * a.transpose();
   }
-  const Eigen::Matrix<double, 9, 4> basis = NullSpaceBasis(A);
+  Eigen::Matrix<double, 9, 4> basis;
+  if (!NullSpaceBasis(A, &basis)) return 0;
   std::array<Eigen::Matrix<double, 9, 1>, 10> essentials;
   bool close_roots = false;
   int count = EssentialCandidates(basis, &essentials, &close_roots);
@@ -605,7 +627,9 @@ int SolveEssential5pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<
     const Eigen::Matrix3d E =
         Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(essentials[i].data());
     CameraPose pose;
-    if (internal::PoseFromExactEssential(E, x1, x2, &pose) == kNumPoints) solutions->push_back(pose);
+    if (internal::PoseFromExactEssential(E, x1, x2, &pose) == kNumPoints) {
+      solutions->push_back(pose);
+    }
   }
   return static_cast<int>(solutions->size());
 }

@@ -46,8 +46,8 @@ struct Normalisation {
 
 }  // namespace
 
-int SolveEssential8pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
-                      std::vector<CameraPose>* solutions) {
+int SolveEssential8pt(const std::vector<Eigen::Vector3d>& x1,
+                      const std::vector<Eigen::Vector3d>& x2, std::vector<CameraPose>* solutions) {
   internal::CheckPairs("SolveEssential8pt", kMinPoints, std::numeric_limits<std::size_t>::max(), x1,
                        x2, solutions);
   solutions->clear();
@@ -55,21 +55,47 @@ int SolveEssential8pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<
 
   const Normalisation normalisation1(x1), normalisation2(x2);
 
-  // Triangular factor of the N x 9 system, streamed 9 rows at a time through [R; rows] (18 x 9).
+  // Row i of the N x 9 system: kron(p2_i, p1_i)^T, E vectorised row by row.
+  auto epipolar_row = [&](std::size_t i) {
+    const Eigen::Vector3d p1 = normalisation1.Apply(x1[i]);
+    const Eigen::Vector3d p2 = normalisation2.Apply(x2[i]);
+    Eigen::Matrix<double, 1, 9> row;
+    for (int k = 0; k < 3; ++k) row.segment<3>(3 * k) = p2[k] * p1.transpose();
+    return row;
+  };
+  // Triangular factor R of A (R^T R = A^T A), without storing A: up to 9 rows directly, else the
+  // first 18, then 9 more at a time through [R; rows] (fixed sizes, no allocation).
   constexpr int kChunk = 9;
-  Eigen::Matrix<double, 2 * kChunk, 9> stacked = Eigen::Matrix<double, 2 * kChunk, 9>::Zero();
-  for (std::size_t start = 0; start < n; start += kChunk) {
-    stacked.bottomRows<kChunk>().setZero();
-    for (std::size_t i = start; i < n && i < start + kChunk; ++i) {
-      const int row = kChunk + static_cast<int>(i - start);
-      const Eigen::Vector3d p1 = normalisation1.Apply(x1[i]);
-      const Eigen::Vector3d p2 = normalisation2.Apply(x2[i]);
-      for (int k = 0; k < 3; ++k) stacked.block<1, 3>(row, 3 * k) = p2[k] * p1.transpose();
+  Eigen::Matrix<double, 9, 9> R;
+  if (n <= kChunk) {
+    Eigen::Matrix<double, kChunk, 9> A = Eigen::Matrix<double, kChunk, 9>::Zero();
+    for (std::size_t i = 0; i < n; ++i) A.row(static_cast<int>(i)) = epipolar_row(i);
+    R = internal::TriangularFactor(A);
+  } else {
+    Eigen::Matrix<double, 2 * kChunk, 9> stacked = Eigen::Matrix<double, 2 * kChunk, 9>::Zero();
+    std::size_t next = 0;
+    for (; next < n && next < 2 * kChunk; ++next) {
+      stacked.row(static_cast<int>(next)) = epipolar_row(next);
     }
-    stacked.topRows<kChunk>() = internal::TriangularFactor(stacked).topRows<kChunk>();
+    R = internal::TriangularFactor(stacked).topRows<kChunk>();
+    while (next < n) {
+      stacked.topRows<kChunk>() = R;
+      stacked.bottomRows<kChunk>().setZero();
+      for (int row = kChunk; row < 2 * kChunk && next < n; ++row, ++next) {
+        stacked.row(row) = epipolar_row(next);
+      }
+      R = internal::TriangularFactor(stacked).topRows<kChunk>();
+    }
   }
-  const Eigen::Matrix<double, 9, 9> R = stacked.topRows<kChunk>();
   if (!R.allFinite()) return 0;
+  // A triangular matrix has at least as many zero diagonal entries as its rank deficiency: two or
+  // more (numerically) zero ones mean a null space of dimension >= 2, i.e. E is not determined
+  // (fewer than 8 distinct points, or no translation: then every [t]_x R fits). Generic data has at
+  // most one.
+  const double largest_diagonal = R.diagonal().cwiseAbs().maxCoeff();
+  int zero_diagonals = 0;
+  for (int i = 0; i < 9; ++i) zero_diagonals += !(std::abs(R(i, i)) > 1e-10 * largest_diagonal);
+  if (zero_diagonals >= 2) return 0;
   const Eigen::Matrix<double, 9, 1> e = internal::SmallestRightSingularVectorOfTriangular<9>(R);
   const Eigen::Matrix3d E_normalised =
       Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(e.data());

@@ -10,6 +10,13 @@
 namespace trigrav {
 namespace internal {
 
+namespace {
+
+// Below this parallax (rad) a correspondence is treated as a point at infinity.
+constexpr double kMinParallax = 1e-10;
+
+}  // namespace
+
 int ChoosePoseByCheirality(const Eigen::Matrix3d& R_a, const Eigen::Matrix3d& R_b,
                            const Eigen::Vector3d& t, const std::vector<Eigen::Vector3d>& x1,
                            const std::vector<Eigen::Vector3d>& x2, CameraPose* pose) {
@@ -22,6 +29,12 @@ int ChoosePoseByCheirality(const Eigen::Matrix3d& R_a, const Eigen::Matrix3d& R_
     const Eigen::Vector3d center = -R_transpose * t;
     int positive = 0, negative = 0;
     for (std::size_t n = 0; n < x1.size(); ++n) {
+      // Rays parallel after rotation (parallax below kMinParallax rad) carry no depth: no vote.
+      const Eigen::Vector3d rotated = *R * x1[n];
+      if (!(x2[n].cross(rotated).squaredNorm() >
+            kMinParallax * kMinParallax * x2[n].squaredNorm() * rotated.squaredNorm())) {
+        continue;
+      }
       const double depth1 = ViewOneDepth(x1[n], x2[n], *R, center);
       const double depth2 = ViewOneDepth(x2[n], x1[n], R_transpose, t);
       positive += depth1 > 0.0 && depth2 > 0.0;

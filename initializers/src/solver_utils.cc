@@ -24,26 +24,18 @@ void CheckRays(const char* solver, const char* name, const std::vector<Eigen::Ve
 void CheckTriplets(const char* solver, std::size_t min_triplets, std::size_t max_triplets,
                    const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
                    const std::vector<Eigen::Vector3d>& x3, const void* solutions) {
-  std::ostringstream message;
-  message << "trigrav: " << solver << ": ";
-  if (solutions == nullptr) {
-    message << "solutions is null";
-    throw std::invalid_argument(message.str());
-  }
+  // The message is built only on failure: this runs on every solver call (the RANSAC hot path).
+  auto fail = [solver](const std::string& what) {
+    throw std::invalid_argument(std::string("trigrav: ") + solver + ": " + what);
+  };
+  if (solutions == nullptr) fail("solutions is null");
   if (x1.size() != x2.size() || x1.size() != x3.size()) {
-    message << "x1, x2, x3 differ in size (" << x1.size() << ", " << x2.size() << ", " << x3.size()
-            << ")";
-    throw std::invalid_argument(message.str());
+    fail("x1, x2, x3 differ in size (" + std::to_string(x1.size()) + ", " +
+         std::to_string(x2.size()) + ", " + std::to_string(x3.size()) + ")");
   }
   if (x1.size() < min_triplets || x1.size() > max_triplets) {
-    message << "needs ";
-    if (min_triplets == max_triplets) {
-      message << "exactly " << min_triplets;
-    } else {
-      message << "at least " << min_triplets;
-    }
-    message << " triplets, got " << x1.size();
-    throw std::invalid_argument(message.str());
+    fail(std::string("needs ") + (min_triplets == max_triplets ? "exactly " : "at least ") +
+         std::to_string(min_triplets) + " triplets, got " + std::to_string(x1.size()));
   }
   CheckRays(solver, "x1", x1);
   CheckRays(solver, "x2", x2);
@@ -53,25 +45,18 @@ void CheckTriplets(const char* solver, std::size_t min_triplets, std::size_t max
 void CheckPairs(const char* solver, std::size_t min_pairs, std::size_t max_pairs,
                 const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
                 const void* solutions) {
-  std::ostringstream message;
-  message << "trigrav: " << solver << ": ";
-  if (solutions == nullptr) {
-    message << "solutions is null";
-    throw std::invalid_argument(message.str());
-  }
+  // As CheckTriplets: the message is built only on failure.
+  auto fail = [solver](const std::string& what) {
+    throw std::invalid_argument(std::string("trigrav: ") + solver + ": " + what);
+  };
+  if (solutions == nullptr) fail("solutions is null");
   if (x1.size() != x2.size()) {
-    message << "x1, x2 differ in size (" << x1.size() << ", " << x2.size() << ")";
-    throw std::invalid_argument(message.str());
+    fail("x1, x2 differ in size (" + std::to_string(x1.size()) + ", " + std::to_string(x2.size()) +
+         ")");
   }
   if (x1.size() < min_pairs || x1.size() > max_pairs) {
-    message << "needs ";
-    if (min_pairs == max_pairs) {
-      message << "exactly " << min_pairs;
-    } else {
-      message << "at least " << min_pairs;
-    }
-    message << " correspondences, got " << x1.size();
-    throw std::invalid_argument(message.str());
+    fail(std::string("needs ") + (min_pairs == max_pairs ? "exactly " : "at least ") +
+         std::to_string(min_pairs) + " correspondences, got " + std::to_string(x1.size()));
   }
   CheckRays(solver, "x1", x1);
   CheckRays(solver, "x2", x2);
@@ -173,16 +158,31 @@ void RefineYawsAndCenters(const std::vector<Eigen::Vector3d>& x1,
     // z = R3 x1 x x3 (math note 4.1); u and z carry the cross-dependence on the other yaw.
     const Eigen::Vector3d u = x2[n].cross(R2 * x1[n]), du = x2[n].cross(dR2 * x1[n]);
     const Eigen::Vector3d z = (R3 * x1[n]).cross(x3[n]), dz = (dR3 * x1[n]).cross(x3[n]);
+    // Everything that depends on a alone or on b alone, then the 4 rows from products of the two.
+    double left_R2c2[2], left_dR2c2[2], pu[2], pdu[2], right_R3c3[2], right_dR3c3[2], zr[2], dzr[2];
+    Eigen::Vector3d left_R2[2], right_R3[2];
+    for (int i = 0; i < 2; ++i) {
+      const Eigen::Vector3d left = p[i].cross(x2[n]);
+      const Eigen::Vector3d right = r[i].cross(x3[n]);
+      left_R2c2[i] = left.dot(R2c2);
+      left_dR2c2[i] = left.dot(dR2c2);
+      left_R2[i] = R2.transpose() * left;
+      pu[i] = p[i].dot(u);
+      pdu[i] = p[i].dot(du);
+      right_R3c3[i] = right.dot(R3c3);
+      right_dR3c3[i] = right.dot(dR3c3);
+      right_R3[i] = R3.transpose() * right;
+      zr[i] = z.dot(r[i]);
+      dzr[i] = dz.dot(r[i]);
+    }
     for (int a = 0; a < 2; ++a) {
-      const Eigen::Vector3d left = p[a].cross(x2[n]);
       for (int b = 0; b < 2; ++b) {
-        const Eigen::Vector3d right = r[b].cross(x3[n]);
         Eigen::Matrix<double, 8, 1> row;
-        row[0] = z.dot(r[b]) * left.dot(dR2c2) + p[a].dot(du) * right.dot(R3c3);
-        row[1] = dz.dot(r[b]) * left.dot(R2c2) + p[a].dot(u) * right.dot(dR3c3);
-        row.segment<3>(2) = z.dot(r[b]) * R2.transpose() * left;
-        row.segment<3>(5) = p[a].dot(u) * R3.transpose() * right;
-        const double residual = row.tail<6>().dot(centers);
+        row[0] = zr[b] * left_dR2c2[a] + pdu[a] * right_R3c3[b];
+        row[1] = dzr[b] * left_R2c2[a] + pu[a] * right_dR3c3[b];
+        row.segment<3>(2) = zr[b] * left_R2[a];
+        row.segment<3>(5) = pu[a] * right_R3[b];
+        const double residual = zr[b] * left_R2c2[a] + pu[a] * right_R3c3[b];
         JtJ.noalias() += row * row.transpose();
         Jtr += residual * row;
       }

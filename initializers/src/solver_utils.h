@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <Eigen/QR>
@@ -103,14 +104,28 @@ Eigen::Matrix<double, C, 1> NullVectorOfWideMatrix(const Eigen::Matrix<double, C
 }
 
 // Upper-triangular C x C factor R of a matrix with C columns (R^T R = A^T A), padded with zero rows
-// when A has fewer rows than columns. Unblocked Householder triangularisation in place: for the small
-// fixed-size systems of the solvers it is several times faster than Eigen's blocked HouseholderQR and
-// allocates nothing.
+// when A has fewer rows than columns. Up to kMaxHouseholderRows rows: unblocked Householder
+// triangularisation in place (for the small fixed-size systems of the solvers several times faster
+// than Eigen's blocked HouseholderQR, and allocation-free). Taller systems, the non-minimal
+// least-squares solves on many inliers, use the Cholesky factor of the Gram matrix A^T A (plus a
+// relative ridge of 1e-15 so an exact null space stays factorable): 4x fewer flops, no copy of A; the
+// squared conditioning is far below the noise of such problems, and the solvers polish afterwards.
+constexpr int kMaxHouseholderRows = 64;
+
 template <typename Derived>
 Eigen::Matrix<double, Derived::ColsAtCompileTime, Derived::ColsAtCompileTime> TriangularFactor(
     const Eigen::MatrixBase<Derived>& A_in) {
   constexpr int C = Derived::ColsAtCompileTime;
-  using Column = Eigen::Matrix<double, Derived::RowsAtCompileTime, 1>;
+  if (Derived::RowsAtCompileTime == Eigen::Dynamic && A_in.rows() > kMaxHouseholderRows) {
+    Eigen::Matrix<double, C, C> gram = Eigen::Matrix<double, C, C>::Zero();
+    gram.template selfadjointView<Eigen::Lower>().rankUpdate(A_in.transpose());
+    const double ridge = 1e-15 * gram.trace();
+    gram.diagonal().array() += ridge > 0.0 ? ridge : 1e-300;
+    const Eigen::LLT<Eigen::Matrix<double, C, C>> cholesky(gram);
+    return cholesky.matrixU();
+  }
+  using Column =
+      Eigen::Matrix<double, Derived::RowsAtCompileTime, 1, 0, Derived::MaxRowsAtCompileTime, 1>;
   typename Derived::PlainObject A = A_in;
   const Eigen::Index m = A.rows();
   const Eigen::Index steps = std::min<Eigen::Index>(m, C);
@@ -134,6 +149,31 @@ Eigen::Matrix<double, Derived::ColsAtCompileTime, Derived::ColsAtCompileTime> Tr
   Eigen::Matrix<double, C, C> R = Eigen::Matrix<double, C, C>::Zero();
   R.topRows(steps) = A.topRows(steps);
   return R;
+}
+
+// Triangular factor R (R^T R = sum_n B_n^T B_n) of the system stacked from the row blocks
+// B_n = block(n), n < count (each with C columns): Householder on the stacked rows while they fit in
+// kMaxHouseholderRows (on the stack, no allocation), otherwise the Cholesky factor of the Gram matrix
+// streamed block by block, so a tall system is never formed.
+template <int C, typename BlockFunction>
+Eigen::Matrix<double, C, C> StackedTriangularFactor(std::size_t count, BlockFunction block) {
+  using Block = decltype(block(std::size_t{0}));
+  constexpr int kBlockRows = Block::RowsAtCompileTime;
+  if (count * kBlockRows <= static_cast<std::size_t>(kMaxHouseholderRows)) {
+    Eigen::Matrix<double, Eigen::Dynamic, C, 0, kMaxHouseholderRows, C> stacked(count * kBlockRows, C);
+    for (std::size_t n = 0; n < count; ++n) {
+      stacked.template middleRows<kBlockRows>(n * kBlockRows) = block(n);
+    }
+    return TriangularFactor(stacked);
+  }
+  Eigen::Matrix<double, C, C> gram = Eigen::Matrix<double, C, C>::Zero();
+  for (std::size_t n = 0; n < count; ++n) {
+    const Block B = block(n);
+    gram.noalias() += B.transpose().lazyProduct(B);
+  }
+  const double ridge = 1e-15 * gram.trace();
+  gram.diagonal().array() += ridge > 0.0 ? ridge : 1e-300;
+  return Eigen::LLT<Eigen::Matrix<double, C, C>>(gram).matrixU();
 }
 
 // View-1 depth of the point seen along x1 and xk, from the pair (1, k) alone, with

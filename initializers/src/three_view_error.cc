@@ -3,25 +3,44 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/LU>
 
 namespace trigrav {
 
 bool TriangulateMidpoint(const std::array<Eigen::Vector3d, 3>& centers_in_ref,
                          const std::array<Eigen::Vector3d, 3>& directions_in_ref,
                          Eigen::Vector3d* point_in_ref) {
-  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  // A = sum_k (I - d_k d_k^T) = 3 I - sum_k d_k d_k^T for unit d_k, b = sum_k (c_k - d_k (d_k . c_k));
+  // only the 6 distinct entries of the symmetric A are accumulated.
+  double a00 = 0.0, a01 = 0.0, a02 = 0.0, a11 = 0.0, a12 = 0.0, a22 = 0.0;
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
   for (int k = 0; k < 3; ++k) {
-    const Eigen::Matrix3d projector =
-        Eigen::Matrix3d::Identity() - directions_in_ref[k] * directions_in_ref[k].transpose();
-    A += projector;
-    b += projector * centers_in_ref[k];
+    const Eigen::Vector3d& d = directions_in_ref[k];
+    const double squared = d.squaredNorm();
+    const Eigen::Vector3d u = d / squared;  // (I - d d^T / |d|^2) also accepts non-unit directions
+    a00 += 1.0 - u[0] * d[0];
+    a01 -= u[0] * d[1];
+    a02 -= u[0] * d[2];
+    a11 += 1.0 - u[1] * d[1];
+    a12 -= u[1] * d[2];
+    a22 += 1.0 - u[2] * d[2];
+    b += centers_in_ref[k] - u * d.dot(centers_in_ref[k]);
   }
-  // Parallel rays make A rank 2 (det 0); demand a clearly invertible system.
-  const double determinant = A.determinant();
+  Eigen::Matrix3d A;
+  A << a00, a01, a02, a01, a11, a12, a02, a12, a22;
+  // A is symmetric: solve by its cofactors. Parallel rays make A rank 2 (det 0); demand a clearly
+  // invertible system (A's eigenvalues lie in [0, 3]).
+  const double c00 = A(1, 1) * A(2, 2) - A(1, 2) * A(1, 2);
+  const double c01 = A(0, 2) * A(1, 2) - A(0, 1) * A(2, 2);
+  const double c02 = A(0, 1) * A(1, 2) - A(0, 2) * A(1, 1);
+  const double determinant = A(0, 0) * c00 + A(0, 1) * c01 + A(0, 2) * c02;
   if (!(std::abs(determinant) > 1e-12)) return false;
-  *point_in_ref = A.inverse() * b;
+  const double c11 = A(0, 0) * A(2, 2) - A(0, 2) * A(0, 2);
+  const double c12 = A(0, 1) * A(0, 2) - A(0, 0) * A(1, 2);
+  const double c22 = A(0, 0) * A(1, 1) - A(0, 1) * A(0, 1);
+  *point_in_ref = Eigen::Vector3d(c00 * b[0] + c01 * b[1] + c02 * b[2],
+                                  c01 * b[0] + c11 * b[1] + c12 * b[2],
+                                  c02 * b[0] + c12 * b[1] + c22 * b[2]) /
+                  determinant;
   return point_in_ref->allFinite();
 }
 
@@ -46,13 +65,15 @@ ThreeViewReprojectionError::PreparedPose ThreeViewReprojectionError::Prepare(
 
 double ThreeViewReprojectionError::operator()(const PreparedPose& pose, std::size_t n) const {
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
-  std::array<Eigen::Vector3d, 3> directions;
-  for (int k = 0; k < 3; ++k) directions[k] = pose.cam_from_ref[k].transpose() * unit_rays_[k][n];
+  // Camera 1 is the reference: identity rotation, centre at the origin.
+  const std::array<Eigen::Vector3d, 3> directions = {
+      unit_rays_[0][n], pose.cam_from_ref[1].transpose() * unit_rays_[1][n],
+      pose.cam_from_ref[2].transpose() * unit_rays_[2][n]};
   Eigen::Vector3d point;
   if (!TriangulateMidpoint(pose.center_in_ref, directions, &point)) return kInfinity;
   double largest_squared = 0.0;
   for (int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d p = pose.cam_from_ref[k] * (point - pose.center_in_ref[k]);
+    const Eigen::Vector3d p = k == 0 ? point : pose.cam_from_ref[k] * (point - pose.center_in_ref[k]);
     if (!(p.z() > 0.0)) return kInfinity;
     const PinholeCamera& camera = cameras_[k];
     const double du = camera.fx * p.x() / p.z() + camera.cx - pixels_[k][n].x();

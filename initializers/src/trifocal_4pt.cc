@@ -203,18 +203,14 @@ bool EstimatePaperClosedForm(const Vector17d& q, AlignedEstimate* estimate) {
 }
 
 // (c2; c3) = null vector of the stacked translation rows with the yaws fixed (math note 4.1).
-template <int Rows>
 void ResolveCenters(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
                     const std::vector<Eigen::Vector3d>& x3, AlignedEstimate* estimate) {
   const Eigen::Matrix3d R2 = RotationAboutY(estimate->theta2);
   const Eigen::Matrix3d R3 = RotationAboutY(estimate->theta3);
-  Eigen::Matrix<double, Rows, 6> F(4 * x1.size(), 6);
-  for (std::size_t n = 0; n < x1.size(); ++n) {
-    F.template middleRows<4>(4 * n) = internal::TranslationRows(x1[n], x2[n], x3[n], R2, R3);
-  }
-
-  const Vector6d centers =
-      internal::SmallestRightSingularVectorOfTriangular<6>(internal::TriangularFactor(F));
+  const Vector6d centers = internal::SmallestRightSingularVectorOfTriangular<6>(
+      internal::StackedTriangularFactor<6>(x1.size(), [&](std::size_t n) {
+        return internal::TranslationRows(x1[n], x2[n], x3[n], R2, R3);
+      }));
   // Keep the sign of the previous centres so the cheirality vote starts from a consistent guess.
   const double sign = centers.head<3>().dot(estimate->center2) + centers.tail<3>().dot(estimate->center3);
   estimate->center2 = (sign < 0.0 ? -1.0 : 1.0) * centers.head<3>();
@@ -226,19 +222,18 @@ template <int Rows>
 int SolveAligned(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
                  const std::vector<Eigen::Vector3d>& x3, const Trifocal4ptOptions& options,
                  std::vector<ThreeViewPose>* solutions) {
-  Eigen::Matrix<double, Rows, 17> A(4 * x1.size(), 17);
-  for (std::size_t n = 0; n < x1.size(); ++n) {
-    A.template middleRows<4>(4 * n) = IncidenceRows(x1[n], x2[n], x3[n]);
-  }
-  if (!A.allFinite()) return 0;
-  // q: exact null vector of the 16 x 17 system in the minimal case, least-squares otherwise.
+  // q: exact null vector of the 16 x 17 system in the minimal case, least-squares otherwise; M is
+  // the system itself or its triangular factor (|A y| = |R_A y|), as enforcement needs it.
   Vector17d q;
   Eigen::Matrix<double, Rows == 16 ? 16 : 17, 17> M;
   if constexpr (Rows == 16) {
-    M = A;
-    q = internal::NullVectorOfWideMatrix<17>(A);
+    for (std::size_t n = 0; n < 4; ++n) M.template middleRows<4>(4 * n) = IncidenceRows(x1[n], x2[n], x3[n]);
+    if (!M.allFinite()) return 0;
+    q = internal::NullVectorOfWideMatrix<17>(M);
   } else {
-    M = internal::TriangularFactor(A);
+    M = internal::StackedTriangularFactor<17>(
+        x1.size(), [&](std::size_t n) { return IncidenceRows(x1[n], x2[n], x3[n]); });
+    if (!M.allFinite()) return 0;
     q = internal::SmallestRightSingularVectorOfTriangular<17>(M);
   }
   if (q.isZero()) return 0;
@@ -259,8 +254,7 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen
       break;
   }
   if (!ok || !std::isfinite(estimate.theta2) || !std::isfinite(estimate.theta3)) return 0;
-  constexpr int kFixedRows = Rows == 16 ? 16 : Eigen::Dynamic;
-  if (options.resolve_translations) ResolveCenters<kFixedRows>(x1, x2, x3, &estimate);
+  if (options.resolve_translations) ResolveCenters(x1, x2, x3, &estimate);
   if (options.recovery == Trifocal4ptRecovery::kEnforced) {
     // Epipoles of the current pose, e' ~ R2 c2 and e'' ~ R3 c3, then enforcement and centres again.
     for (int iteration = 0; iteration < options.epipole_iterations; ++iteration) {
@@ -270,7 +264,7 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen
           !EnforceConstraints(M, epipole2, epipole3, &estimate)) {
         return 0;
       }
-      if (options.resolve_translations) ResolveCenters<kFixedRows>(x1, x2, x3, &estimate);
+      if (options.resolve_translations) ResolveCenters(x1, x2, x3, &estimate);
     }
   }
 

@@ -27,7 +27,7 @@ struct RansacOptions {
   // max_error * local_optimization_threshold_multiplier to max_error (Lebeda, Matas, Chum, "Fixing
   // the locally optimized RANSAC", BMVC 2012). Every result is scored at max_error.
   bool local_optimization = true;
-  int local_optimization_rounds = 4;
+  int local_optimization_rounds = 3;
   double local_optimization_threshold_multiplier = 3.0;
 
   // Throws std::invalid_argument naming the first bad field.
@@ -103,27 +103,27 @@ inline int RequiredIterations(double inlier_ratio, int sample_size, double confi
                                                                     : static_cast<int>(std::ceil(k));
 }
 
-// MSAC cost of a model, abandoned (returning +inf) once it exceeds `bound`.
+// MSAC cost of a model, abandoned (returning +inf) once it exceeds `bound`. Writes each datum's error
+// into *errors as it goes, so a completed pass also gives the inliers without a second pass.
 template <typename Estimator>
 double MsacCost(const Estimator& estimator, const typename Estimator::Model& model,
-                double squared_threshold, double bound) {
+                double squared_threshold, double bound, std::vector<double>* errors) {
   double cost = 0.0;
   const std::size_t n = estimator.num_data();
   for (std::size_t i = 0; i < n; ++i) {
     const double e = estimator.error(model, i);
+    (*errors)[i] = e;
     cost += std::min(e * e, squared_threshold);
     if (cost > bound) return std::numeric_limits<double>::infinity();
   }
   return cost;
 }
 
-template <typename Estimator>
-int CollectInliers(const Estimator& estimator, const typename Estimator::Model& model,
-                   double threshold, std::vector<int>* inliers) {
+inline int CollectInliers(const std::vector<double>& errors, double threshold,
+                          std::vector<int>* inliers) {
   inliers->clear();
-  const std::size_t n = estimator.num_data();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (estimator.error(model, i) <= threshold) inliers->push_back(static_cast<int>(i));
+  for (std::size_t i = 0; i < errors.size(); ++i) {
+    if (errors[i] <= threshold) inliers->push_back(static_cast<int>(i));
   }
   return static_cast<int>(inliers->size());
 }
@@ -165,6 +165,9 @@ RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
   std::vector<int> inliers, local_inliers;
   inliers.reserve(n);
   local_inliers.reserve(n);
+  // Errors of the best model and of the last candidate (complete unless its scoring was abandoned).
+  std::vector<double> best_errors(n), candidate_errors(n);
+  bool candidate_errors_complete = false;
   double best_cost = std::numeric_limits<double>::infinity();
   int best_inliers = 0;
   int required = options.max_iterations;
@@ -172,11 +175,15 @@ RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
   // Scores a candidate; on improvement keeps it and updates the stopping criterion.
   auto consider = [&](const Model& model) {
     ++report.num_models_scored;
-    const double cost = internal::MsacCost(estimator, model, squared_threshold, best_cost);
+    const double cost =
+        internal::MsacCost(estimator, model, squared_threshold, best_cost, &candidate_errors);
+    candidate_errors_complete = std::isfinite(cost);
     if (!(cost < best_cost)) return false;
     best_cost = cost;
     report.model = model;
-    best_inliers = internal::CollectInliers(estimator, model, options.max_error, &inliers);
+    best_errors.swap(candidate_errors);
+    candidate_errors_complete = false;
+    best_inliers = internal::CollectInliers(best_errors, options.max_error, &inliers);
     required = std::max(options.min_iterations,
                         internal::RequiredIterations(static_cast<double>(best_inliers) / n,
                                                      kSampleSize, options.confidence));
@@ -191,7 +198,9 @@ RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
     bool improved = false;
     for (const Model& model : models) improved = consider(model) || improved;
     if (!improved || !options.local_optimization) continue;
+    // `current` starts as the new best model; its errors are in best_errors.
     Model current = report.model;
+    const std::vector<double>* current_errors = &best_errors;
     for (int round = 0; round < options.local_optimization_rounds; ++round) {
       const double fraction =
           options.local_optimization_rounds > 1
@@ -201,12 +210,17 @@ RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
           options.max_error *
           (options.local_optimization_threshold_multiplier -
            (options.local_optimization_threshold_multiplier - 1.0) * fraction);
-      if (internal::CollectInliers(estimator, current, threshold, &local_inliers) < kSampleSize) {
-        break;
-      }
+      if (internal::CollectInliers(*current_errors, threshold, &local_inliers) < kSampleSize) break;
       ++report.num_local_optimizations;
       if (!estimator.refine_model(local_inliers, &current)) break;
-      consider(current);
+      if (consider(current)) {
+        current_errors = &best_errors;
+      } else {
+        if (!candidate_errors_complete) {
+          for (std::size_t i = 0; i < n; ++i) candidate_errors[i] = estimator.error(current, i);
+        }
+        current_errors = &candidate_errors;
+      }
     }
   }
 
@@ -217,7 +231,7 @@ RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
   report.msac_cost = best_cost;
   report.num_inliers = best_inliers;
   report.inlier_mask.assign(n, 0);
-  for (const int i : inliers) report.inlier_mask[i] = 1;
+  for (const int i : inliers) report.inlier_mask[i] = 1;  // inliers of the best model
   report.success = true;
   return report;
 }

@@ -12,7 +12,7 @@
 namespace trigrav {
 
 // Multi-view midpoint: the point closest (least squares) to the rays from the centres c_k along the
-// unit directions d_k, all in reference (camera 1) coordinates (math note section 7):
+// directions d_k (any non-zero length), all in reference (camera 1) coordinates (math note section 7):
 //   X = (sum_k (I - d_k d_k^T))^-1 sum_k (I - d_k d_k^T) c_k.
 // Returns false (X untouched) if the rays are parallel (singular system).
 bool TriangulateMidpoint(const std::array<Eigen::Vector3d, 3>& centers_in_ref,

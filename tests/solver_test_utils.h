@@ -1,0 +1,50 @@
+// Helpers shared by the solver tests.
+#ifndef TRIGRAV_TESTS_SOLVER_TEST_UTILS_H_
+#define TRIGRAV_TESTS_SOLVER_TEST_UTILS_H_
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "trigrav/initializers/pose_metrics.h"
+#include "trigrav/initializers/synthetic_scene.h"
+
+namespace trigrav {
+namespace testing_utils {
+
+inline double Median(std::vector<double> values) {
+  const auto middle = values.begin() + values.size() / 2;
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+// Median rotation error (deg, views 2 and 3 pooled) of the first (best-ranked) solution of
+// solve(scene, &solutions) over num_scenes scenes drawn with `seed`; a scene without solution counts
+// 180 deg for both views and is counted in *no_solution when given.
+template <typename Solve>
+double MedianFirstSolutionRotationErrorDeg(const SyntheticSceneOptions& options, std::uint64_t seed,
+                                           int num_scenes, Solve solve, int* no_solution = nullptr) {
+  std::mt19937_64 rng(seed);
+  std::vector<double> errors;
+  std::vector<ThreeViewPose> solutions;
+  for (int trial = 0; trial < num_scenes; ++trial) {
+    const SyntheticScene scene = GenerateSyntheticScene(options, &rng);
+    if (solve(scene, &solutions) == 0) {
+      if (no_solution != nullptr) ++*no_solution;
+      errors.insert(errors.end(), {180.0, 180.0});
+      continue;
+    }
+    EXPECT_TRUE(solutions[0].IsFinite());
+    const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(scene.ground_truth, solutions[0]);
+    errors.insert(errors.end(), {e.rotation_deg[0], e.rotation_deg[1]});
+  }
+  return Median(errors);
+}
+
+}  // namespace testing_utils
+}  // namespace trigrav
+
+#endif  // TRIGRAV_TESTS_SOLVER_TEST_UTILS_H_

@@ -77,11 +77,23 @@ void BM_Trifocal4pt(benchmark::State& state) {
 }
 BENCHMARK(BM_Trifocal4pt);
 
+// The math note's recommended pipeline: trigrav's default without the polish step.
+void BM_Trifocal4ptNoPolish(benchmark::State& state) {
+  trigrav::Trifocal4ptOptions options;
+  options.polish_iterations = 0;
+  RunSolverBenchmark(state, 4,
+                     [&options](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
+                       return trigrav::SolveTrifocal4pt(x1, x2, x3, options, solutions);
+                     });
+}
+BENCHMARK(BM_Trifocal4ptNoPolish);
+
 // The paper's own 4-point variant: no enforcement, eqs c8-c11, no translation re-solve.
 void BM_Trifocal4ptPaper(benchmark::State& state) {
   trigrav::Trifocal4ptOptions options;
   options.recovery = trigrav::Trifocal4ptRecovery::kPaperClosedForm;
   options.resolve_translations = false;
+  options.polish_iterations = 0;
   RunSolverBenchmark(state, 4,
                      [&options](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
                        return trigrav::SolveTrifocal4pt(x1, x2, x3, options, solutions);

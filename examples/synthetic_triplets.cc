@@ -18,15 +18,17 @@
 
 #include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/synthetic_scene.h"
+#include "trigrav/initializers/trifocal_3pt.h"
 #include "trigrav/initializers/trifocal_4pt.h"
 
 DEFINE_string(solver, "4pt",
-              "Solver: 4pt (trigrav's default pipeline), 4pt-note (math note 3.3: no polish), "
+              "Solver: 3pt (decoupled, best-ranked candidate), 3pt-sextic (the paper's system), "
+              "4pt (trigrav's default pipeline), 4pt-note (math note 3.3: no polish), "
               "4pt-paper-enforced (paper III-D), 4pt-paper (paper eqs c8-c11), "
               "4pt-least-squares (math note 3.2)");
 DEFINE_double(noise_px, 1.0, "Image noise sigma in pixels (all three views).");
 DEFINE_double(imu_noise_deg, 0.0, "IMU noise sigma in degrees on each view's pitch and roll.");
-DEFINE_int32(points, 4, "Triplets per scene.");
+DEFINE_int32(points, 4, "Triplets per scene (the 3pt solvers need exactly 3).");
 DEFINE_int32(trials, 10, "Number of scenes.");
 DEFINE_int32(print_trials, 10, "Print per-view errors of this many trials.");
 DEFINE_uint64(seed, 1, "Random seed; the same seed gives the same output.");
@@ -56,6 +58,16 @@ GravitySolver Trifocal4pt(trigrav::Trifocal4ptRecovery recovery, bool resolve_tr
 const std::map<std::string, GravitySolver>& Solvers() {
   using trigrav::Trifocal4ptRecovery;
   static const std::map<std::string, GravitySolver> solvers = {
+      {"3pt", [](const Rays& x1, const Rays& x2, const Rays& x3, const Eigen::Vector3d& g1,
+                 const Eigen::Vector3d& g2, const Eigen::Vector3d& g3,
+                 std::vector<ThreeViewPose>* out) {
+         return trigrav::SolveTrifocal3pt(x1, x2, x3, g1, g2, g3, out);
+       }},
+      {"3pt-sextic", [](const Rays& x1, const Rays& x2, const Rays& x3, const Eigen::Vector3d& g1,
+                        const Eigen::Vector3d& g2, const Eigen::Vector3d& g3,
+                        std::vector<ThreeViewPose>* out) {
+         return trigrav::SolveTrifocal3ptSextic(x1, x2, x3, g1, g2, g3, out);
+       }},
       {"4pt", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 1)},
       {"4pt-note", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 0)},
       {"4pt-paper-enforced", Trifocal4pt(Trifocal4ptRecovery::kEnforced, false, 0)},
@@ -81,6 +93,11 @@ int main(int argc, char** argv) {
   const auto solver = Solvers().find(FLAGS_solver);
   CHECK(solver != Solvers().end()) << "unknown --solver=" << FLAGS_solver;
   CHECK_GT(FLAGS_trials, 0) << "--trials must be positive";
+  if (FLAGS_solver.rfind("3pt", 0) == 0) {
+    CHECK_EQ(FLAGS_points, 3) << "--solver=" << FLAGS_solver << " takes exactly 3 triplets: --points=3";
+  } else {
+    CHECK_GE(FLAGS_points, 4) << "--solver=" << FLAGS_solver << " needs --points >= 4";
+  }
   CHECK(FLAGS_noise_px >= 0.0 && FLAGS_imu_noise_deg >= 0.0) << "noise levels must be >= 0";
 
   trigrav::SyntheticSceneOptions scene_options;

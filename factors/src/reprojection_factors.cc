@@ -1,21 +1,24 @@
 // All AutoDiff instantiations of trigrav::factors, in one translation unit (compile time).
 #include "trigrav/factors/reprojection_factors.h"
 
-#include <cmath>
-#include <stdexcept>
-
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/rotation.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <stdexcept>
 
 #include "trigrav/factors/angle_manifold.h"
 
 namespace trigrav {
 namespace {
 
-// Pinhole projection of a point in camera coordinates, minus the observed pixel. Returns false for a
-// point at or behind the camera plane, which Ceres treats as an invalid step.
+// Pinhole projection of a point in camera coordinates, minus the observed pixel. Returns false for
+// a point at or behind the camera plane, which Ceres treats as an invalid step.
 template <typename T>
-bool PixelResidual(const PinholeCamera& camera, const Eigen::Vector2d& pixel, const T* x_cam,
+bool PixelResidual(const PinholeCamera& camera,
+                   const Eigen::Vector2d& pixel,
+                   const T* x_cam,
                    T* residuals) {
   if (!(x_cam[2] > T(0.0))) return false;
   const T inv_z = T(1.0) / x_cam[2];
@@ -36,7 +39,9 @@ Eigen::Vector3d UnitOrThrow(const Eigen::Vector3d& v, const char* what) {
 }  // namespace
 
 template <typename T>
-bool YawOnlyReprojectionError::operator()(const T* yaw, const T* center, const T* point,
+bool YawOnlyReprojectionError::operator()(const T* yaw,
+                                          const T* center,
+                                          const T* point,
                                           T* residuals) const {
   // x_cam = A_k^T R_y(yaw) A_1 (X - C).
   T d[3] = {point[0] - center[0], point[1] - center[1], point[2] - center[2]};
@@ -68,7 +73,9 @@ ceres::CostFunction* YawOnlyReprojectionError::Create(const PinholeCamera& camer
 }
 
 template <typename T>
-bool ReprojectionError::operator()(const T* quaternion, const T* center, const T* point,
+bool ReprojectionError::operator()(const T* quaternion,
+                                   const T* center,
+                                   const T* point,
                                    T* residuals) const {
   const T d[3] = {point[0] - center[0], point[1] - center[1], point[2] - center[2]};
   T x_cam[3];
@@ -99,7 +106,8 @@ GravityPriorError::GravityPriorError(const Eigen::Vector3d& gravity_in_ref,
       gravity_in_cam_(UnitOrThrow(gravity_in_cam, "gravity_in_cam")) {
   // Any unit vector not parallel to g, orthogonalised.
   const Eigen::Vector3d& g = gravity_in_cam_;
-  Eigen::Vector3d seed = std::abs(g.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d seed =
+      std::abs(g.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
   tangent_basis_[0] = (seed - g.dot(seed) * g).normalized();
   tangent_basis_[1] = g.cross(tangent_basis_[0]);
 }
@@ -110,8 +118,8 @@ bool GravityPriorError::operator()(const T* quaternion, T* residuals) const {
   T p[3];
   ceres::UnitQuaternionRotatePoint(quaternion, g_ref, p);
   // Log map of p at g: v = p - (g.p) g, angle = atan2(|v|, g.p), log = angle / |v| * v.
-  const T cos_angle = T(gravity_in_cam_.x()) * p[0] + T(gravity_in_cam_.y()) * p[1] +
-                      T(gravity_in_cam_.z()) * p[2];
+  const T cos_angle =
+      T(gravity_in_cam_.x()) * p[0] + T(gravity_in_cam_.y()) * p[1] + T(gravity_in_cam_.z()) * p[2];
   T v[3];
   for (int i = 0; i < 3; ++i) v[i] = p[i] - cos_angle * T(gravity_in_cam_[i]);
   const T sin_squared = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];

@@ -4,11 +4,11 @@
 // Manifold of a one-number angle (the yaw of trigrav's yaw-only rotations), wrapped to [-pi, pi),
 // like Ceres examples/slam/pose_graph_2d/angle_manifold.h.
 
-#include <cmath>
-
 #include <ceres/autodiff_manifold.h>
 #include <ceres/jet.h>
 #include <ceres/manifold.h>
+
+#include <cmath>
 
 namespace trigrav {
 
@@ -16,8 +16,9 @@ namespace trigrav {
 template <typename T>
 inline T NormalizeAngle(const T& angle_rad) {
   using std::floor;
-  const T two_pi(2.0 * M_PI);
-  return angle_rad - two_pi * floor((angle_rad + T(M_PI)) / two_pi);
+  constexpr double kPi = 3.14159265358979323846;
+  const T two_pi(2.0 * kPi);
+  return angle_rad - two_pi * floor((angle_rad + T(kPi)) / two_pi);
 }
 
 struct AngleManifoldFunctor {

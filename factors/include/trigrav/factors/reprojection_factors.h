@@ -13,8 +13,9 @@
 //
 // The AutoDiff instantiations live in src/reprojection_factors.cc; this header only declares.
 
-#include <Eigen/Core>
 #include <ceres/cost_function.h>
+
+#include <Eigen/Core>
 
 #include "trigrav/initializers/three_view_observations.h"
 
@@ -24,9 +25,13 @@ namespace trigrav {
 // yaw-only rotation R = A_k^T R_y(yaw) A_1. Parameter blocks: yaw (1), centre C_k (3), point (3).
 class YawOnlyReprojectionError {
  public:
-  YawOnlyReprojectionError(const PinholeCamera& camera, const Eigen::Matrix3d& alignment_cam,
-                           const Eigen::Matrix3d& alignment_ref, const Eigen::Vector2d& pixel)
-      : camera_(camera), alignment_cam_(alignment_cam), alignment_ref_(alignment_ref),
+  YawOnlyReprojectionError(const PinholeCamera& camera,
+                           const Eigen::Matrix3d& alignment_cam,
+                           const Eigen::Matrix3d& alignment_ref,
+                           const Eigen::Vector2d& pixel)
+      : camera_(camera),
+        alignment_cam_(alignment_cam),
+        alignment_ref_(alignment_ref),
         pixel_(pixel) {}
 
   template <typename T>
@@ -44,9 +49,9 @@ class YawOnlyReprojectionError {
   Eigen::Vector2d pixel_;
 };
 
-// Pixel residual (2) of a point seen by a camera with a general rotation. Parameter blocks: rotation
-// cam_from_ref as a unit quaternion in Ceres order [w, x, y, z] (4, use ceres::QuaternionManifold),
-// centre C_k (3), point (3).
+// Pixel residual (2) of a point seen by a camera with a general rotation. Parameter blocks:
+// rotation cam_from_ref as a unit quaternion in Ceres order [w, x, y, z] (4, use
+// ceres::QuaternionManifold), centre C_k (3), point (3).
 class ReprojectionError {
  public:
   ReprojectionError(const PinholeCamera& camera, const Eigen::Vector2d& pixel)
@@ -62,8 +67,8 @@ class ReprojectionError {
   Eigen::Vector2d pixel_;
 };
 
-// Pixel residual (2) of a point seen by the fixed reference camera (identity rotation, centre at the
-// origin). Parameter block: point (3).
+// Pixel residual (2) of a point seen by the fixed reference camera (identity rotation, centre at
+// the origin). Parameter block: point (3).
 class ReferenceReprojectionError {
  public:
   ReferenceReprojectionError(const PinholeCamera& camera, const Eigen::Vector2d& pixel)
@@ -79,11 +84,11 @@ class ReferenceReprojectionError {
   Eigen::Vector2d pixel_;
 };
 
-// Gravity prior of camera k (2 residuals, radians): the direction its rotation predicts for gravity,
-// p = R_k g_ref / |g_ref|, against the measured direction g_k / |g_k|, as the log map of p at g_k
-// expressed in a fixed orthonormal basis of the tangent plane at g_k. Its norm is the angle between
-// the two directions. Parameter block: rotation cam_from_ref as a quaternion [w, x, y, z] (4).
-// Weight it with ceres::ScaledLoss (1 / sigma^2, sigma the IMU's angular sigma in radians).
+// Gravity prior of camera k (2 residuals, radians): the direction its rotation predicts for
+// gravity, p = R_k g_ref / |g_ref|, against the measured direction g_k / |g_k|, as the log map of p
+// at g_k expressed in a fixed orthonormal basis of the tangent plane at g_k. Its norm is the angle
+// between the two directions. Parameter block: rotation cam_from_ref as a quaternion [w, x, y, z]
+// (4). Weight it with ceres::ScaledLoss (1 / sigma^2, sigma the IMU's angular sigma in radians).
 // Throws std::invalid_argument for a zero-length or non-finite gravity vector.
 class GravityPriorError {
  public:
@@ -96,8 +101,8 @@ class GravityPriorError {
                                      const Eigen::Vector3d& gravity_in_cam);
 
  private:
-  Eigen::Vector3d gravity_in_ref_;   // unit
-  Eigen::Vector3d gravity_in_cam_;   // unit
+  Eigen::Vector3d gravity_in_ref_;    // unit
+  Eigen::Vector3d gravity_in_cam_;    // unit
   Eigen::Vector3d tangent_basis_[2];  // orthonormal, perpendicular to gravity_in_cam_
 };
 

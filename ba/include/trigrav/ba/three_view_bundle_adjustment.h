@@ -1,0 +1,129 @@
+#ifndef TRIGRAV_BA_THREE_VIEW_BUNDLE_ADJUSTMENT_H_
+#define TRIGRAV_BA_THREE_VIEW_BUNDLE_ADJUSTMENT_H_
+
+// Three-view bundle adjustment, split like COLMAP's estimators/bundle_adjustment.h into a Config
+// (what is in the problem, what is constant, how the gauge is fixed), Options (rotation model,
+// loss, solver) and a builder that owns the ceres::Problem.
+
+#include <ceres/problem.h>
+#include <ceres/solver.h>
+#include <ceres/types.h>
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "trigrav/initializers/camera_pose.h"
+#include "trigrav/initializers/three_view_observations.h"
+
+namespace trigrav {
+
+// What is refined and how the 7-dof gauge of three uncalibrated-scale views is fixed:
+//  - camera 1 is the reference: identity rotation, centre at the origin, never in the problem;
+//  - the scale is fixed by |C_2| = 1, camera 2's centre living on ceres::SphereManifold<3>.
+struct ThreeViewBundleAdjustmentConfig {
+  // Triplets put into the problem (indices into the observations), e.g. the RANSAC inliers. Empty
+  // means all of them.
+  std::vector<int> triplets;
+  // Keep the triangulated points constant (motion-only refinement).
+  bool constant_points = false;
+
+  // Config with the triplets whose mask entry is non-zero.
+  static ThreeViewBundleAdjustmentConfig FromInlierMask(const std::vector<char>& inliers);
+};
+
+struct ThreeViewBundleAdjustmentOptions {
+  enum class RotationModel {
+    // R_k = A_k^T R_y(yaw_k) A_1: pitch and roll exactly as the measured gravity says; one angle
+    // per
+    // camera with YawManifold.
+    kYawOnly,
+    // R_k free (quaternion on ceres::QuaternionManifold) with a GravityPriorError per camera 2, 3
+    // weighted by (pixel_sigma_px / gravity_sigma)^2: pitch and roll may move when the IMU is off.
+    kGravityPrior,
+  };
+  enum class LossType { kNone, kHuber, kCauchy };
+
+  RotationModel rotation_model = RotationModel::kYawOnly;
+  LossType loss = LossType::kHuber;
+  // Huber / Cauchy scale on the pixel residuals. At the RANSAC threshold (2 px) Huber only guards
+  // against a stray inlier; at 1 px with 1 px noise it triples Ceres' iterations for no accuracy.
+  double loss_scale_px = 2.0;
+  double pixel_sigma_px = 1.0;     // pixel noise assumed when weighting the gravity prior
+  double gravity_sigma_deg = 0.5;  // IMU angular sigma (gravity-prior model)
+  int max_num_iterations = 50;
+  int num_threads = 1;
+  ceres::LinearSolverType linear_solver_type = ceres::DENSE_SCHUR;
+  double function_tolerance = 1e-8;
+  double gradient_tolerance = 1e-10;
+  double parameter_tolerance = 1e-10;
+
+  // Throws std::invalid_argument naming the first bad field.
+  void Check() const;
+};
+
+struct ThreeViewBundleAdjustmentSummary {
+  bool success = false;  // Ceres ran and returned a usable (finite) solution
+  std::string message;   // why not, when !success
+  ThreeViewPose pose;    // refined, |cam2_from_cam1.Center()| = 1
+  int num_points = 0;    // triplets in the problem
+  int num_residual_blocks = 0;
+  double initial_cost = 0.0;  // Ceres cost 1/2 sum rho(|r|^2)
+  double final_cost = 0.0;
+  int iterations = 0;  // successful + unsuccessful steps
+  ceres::TerminationType termination = ceres::FAILURE;
+  double solve_time_s = 0.0;
+  std::string brief_report;  // ceres::Solver::Summary::BriefReport()
+};
+
+// Owns the ceres::Problem of a three-view refinement. Usage:
+//   ThreeViewBundleAdjuster ba(observations, config, options);
+//   if (ba.Build(initial_pose)) summary = ba.Solve();
+class ThreeViewBundleAdjuster {
+ public:
+  // Keeps a reference to `observations`, which must outlive the adjuster and pass Check().
+  // Throws std::invalid_argument for bad options or a triplet index out of range.
+  ThreeViewBundleAdjuster(const ThreeViewObservations& observations,
+                          const ThreeViewBundleAdjustmentConfig& config,
+                          const ThreeViewBundleAdjustmentOptions& options);
+  ~ThreeViewBundleAdjuster();
+  ThreeViewBundleAdjuster(const ThreeViewBundleAdjuster&) = delete;
+  ThreeViewBundleAdjuster& operator=(const ThreeViewBundleAdjuster&) = delete;
+
+  // Builds the problem around `initial` (rescaled to |C_2| = 1): parameters from the pose, points
+  // triangulated by the multi-view midpoint (TriangulateMidpoint); triplets that cannot be
+  // triangulated or lie behind a camera are left out. Returns false with message() if the pose is
+  // not finite, |C_2| = 0 or fewer than 3 triplets remain.
+  bool Build(const ThreeViewPose& initial);
+  // Runs Ceres. Requires a successful Build().
+  ThreeViewBundleAdjustmentSummary Solve();
+
+  const std::string& message() const { return message_; }
+  ceres::Problem* problem() { return problem_.get(); }
+  // The pose currently held in the parameter blocks.
+  ThreeViewPose CurrentPose() const;
+  // Points of the problem's triplets (reference frame), in the order of triplet_indices().
+  const std::vector<Eigen::Vector3d>& points() const { return points_; }
+  const std::vector<int>& triplet_indices() const { return used_triplets_; }
+
+ private:
+  const ThreeViewObservations& observations_;
+  ThreeViewBundleAdjustmentConfig config_;
+  ThreeViewBundleAdjustmentOptions options_;
+  std::unique_ptr<ceres::Problem> problem_;
+  std::string message_;
+  bool built_ = false;
+
+  Eigen::Matrix3d alignment_[3];
+  // Per camera 2, 3 (index 0, 1): yaw (kYawOnly) or quaternion [w x y z] (kGravityPrior), centre.
+  double yaw_[2] = {0.0, 0.0};
+  double quaternion_[2][4] = {{1.0, 0.0, 0.0, 0.0}, {1.0, 0.0, 0.0, 0.0}};
+  double center_[2][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+  std::vector<Eigen::Vector3d> points_;
+  std::vector<int> used_triplets_;
+};
+
+}  // namespace trigrav
+
+#endif  // TRIGRAV_BA_THREE_VIEW_BUNDLE_ADJUSTMENT_H_

@@ -1,0 +1,284 @@
+#include "trigrav/ba/three_view_bundle_adjustment.h"
+
+#include <ceres/loss_function.h>
+#include <ceres/manifold.h>
+#include <ceres/sphere_manifold.h>
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "trigrav/factors/angle_manifold.h"
+#include "trigrav/factors/reprojection_factors.h"
+#include "trigrav/initializers/gravity.h"
+#include "trigrav/initializers/three_view_error.h"
+
+namespace trigrav {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+ceres::LossFunction* MakePixelLoss(const ThreeViewBundleAdjustmentOptions& options) {
+  using LossType = ThreeViewBundleAdjustmentOptions::LossType;
+  switch (options.loss) {
+    case LossType::kNone:
+      return nullptr;
+    case LossType::kHuber:
+      return new ceres::HuberLoss(options.loss_scale_px);
+    case LossType::kCauchy:
+      return new ceres::CauchyLoss(options.loss_scale_px);
+  }
+  return nullptr;
+}
+
+// Best-fitting yaw of a rotation that should be R_y(yaw).
+double YawOf(const Eigen::Matrix3d& m) { return std::atan2(m(0, 2) - m(2, 0), m(0, 0) + m(2, 2)); }
+
+}  // namespace
+
+ThreeViewBundleAdjustmentConfig ThreeViewBundleAdjustmentConfig::FromInlierMask(
+    const std::vector<char>& inliers) {
+  ThreeViewBundleAdjustmentConfig config;
+  for (std::size_t i = 0; i < inliers.size(); ++i) {
+    if (inliers[i]) config.triplets.push_back(static_cast<int>(i));
+  }
+  return config;
+}
+
+void ThreeViewBundleAdjustmentOptions::Check() const {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) {
+      throw std::invalid_argument(std::string("trigrav: ThreeViewBundleAdjustmentOptions: ") +
+                                  what);
+    }
+  };
+  auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+  require(positive(loss_scale_px), "loss_scale_px must be positive and finite");
+  require(positive(pixel_sigma_px), "pixel_sigma_px must be positive and finite");
+  require(positive(gravity_sigma_deg), "gravity_sigma_deg must be positive and finite");
+  require(max_num_iterations >= 0, "max_num_iterations must be >= 0");
+  require(num_threads >= 1, "num_threads must be >= 1");
+  require(function_tolerance >= 0.0 && gradient_tolerance >= 0.0 && parameter_tolerance >= 0.0,
+          "tolerances must be >= 0");
+  require(
+      rotation_model == RotationModel::kYawOnly || rotation_model == RotationModel::kGravityPrior,
+      "unknown rotation_model");
+  require(loss == LossType::kNone || loss == LossType::kHuber || loss == LossType::kCauchy,
+          "unknown loss");
+}
+
+ThreeViewBundleAdjuster::ThreeViewBundleAdjuster(const ThreeViewObservations& observations,
+                                                 const ThreeViewBundleAdjustmentConfig& config,
+                                                 const ThreeViewBundleAdjustmentOptions& options)
+    : observations_(observations), config_(config), options_(options) {
+  options_.Check();
+  const int n = static_cast<int>(observations_.size());
+  for (int k = 1; k < 3; ++k) {
+    if (observations_.pixels[k].size() != observations_.size()) {
+      throw std::invalid_argument("trigrav: ThreeViewBundleAdjuster: views differ in size");
+    }
+  }
+  if (config_.triplets.empty()) {
+    for (int i = 0; i < n; ++i) config_.triplets.push_back(i);
+  }
+  for (const int i : config_.triplets) {
+    if (i < 0 || i >= n) {
+      throw std::invalid_argument("trigrav: ThreeViewBundleAdjuster: triplet index out of range");
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    alignment_[k] = GravityAlignmentFromGravity(observations_.gravity_in_cam[k]);
+  }
+}
+
+ThreeViewBundleAdjuster::~ThreeViewBundleAdjuster() = default;
+
+bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial) {
+  built_ = false;
+  problem_.reset();
+  points_.clear();
+  used_triplets_.clear();
+  if (!initial.IsFinite()) {
+    message_ = "initial pose is not finite";
+    return false;
+  }
+  const CameraPose* poses[2] = {&initial.cam2_from_cam1, &initial.cam3_from_cam1};
+  const double scale = initial.cam2_from_cam1.Center().norm();
+  if (!(scale > 1e-12) || !std::isfinite(scale)) {
+    message_ = "initial pose has |C2| = 0";
+    return false;
+  }
+  std::array<Eigen::Matrix3d, 3> rotation;
+  std::array<Eigen::Vector3d, 3> center;
+  rotation[0].setIdentity();
+  center[0].setZero();
+  const bool yaw_only =
+      options_.rotation_model == ThreeViewBundleAdjustmentOptions::RotationModel::kYawOnly;
+  for (int j = 0; j < 2; ++j) {
+    const Eigen::Vector3d c = poses[j]->Center() / scale;
+    for (int i = 0; i < 3; ++i) center_[j][i] = c[i];
+    if (yaw_only) {
+      yaw_[j] = YawOf(alignment_[j + 1] * poses[j]->R * alignment_[0].transpose());
+    } else {
+      Eigen::Quaterniond q(poses[j]->R);
+      q.normalize();
+      quaternion_[j][0] = q.w();
+      quaternion_[j][1] = q.x();
+      quaternion_[j][2] = q.y();
+      quaternion_[j][3] = q.z();
+    }
+  }
+  const ThreeViewPose start = CurrentPose();  // the parameterised pose (projected on the model)
+  rotation[1] = start.cam2_from_cam1.R;
+  rotation[2] = start.cam3_from_cam1.R;
+  center[1] = start.cam2_from_cam1.Center();
+  center[2] = start.cam3_from_cam1.Center();
+
+  // Triangulate; keep triplets in front of all three cameras.
+  points_.reserve(config_.triplets.size());
+  for (const int i : config_.triplets) {
+    std::array<Eigen::Vector3d, 3> directions;
+    for (int k = 0; k < 3; ++k) {
+      directions[k] =
+          rotation[k].transpose() * observations_.cameras[k].Ray(observations_.pixels[k][i]);
+    }
+    Eigen::Vector3d x;
+    if (!TriangulateMidpoint(center, directions, &x) || !x.allFinite()) continue;
+    bool in_front = true;
+    for (int k = 0; k < 3; ++k) in_front = in_front && (rotation[k] * (x - center[k])).z() > 0.0;
+    if (!in_front) continue;
+    points_.push_back(x);
+    used_triplets_.push_back(i);
+  }
+  if (points_.size() < 3) {
+    message_ = "fewer than 3 triplets can be triangulated in front of the cameras (" +
+               std::to_string(points_.size()) + ")";
+    points_.clear();
+    used_triplets_.clear();
+    return false;
+  }
+
+  problem_ = std::make_unique<ceres::Problem>();
+  for (std::size_t p = 0; p < points_.size(); ++p) {
+    const int i = used_triplets_[p];
+    double* point = points_[p].data();
+    problem_->AddResidualBlock(
+        ReferenceReprojectionError::Create(observations_.cameras[0], observations_.pixels[0][i]),
+        MakePixelLoss(options_), point);
+    for (int j = 0; j < 2; ++j) {
+      const int k = j + 1;
+      ceres::CostFunction* cost =
+          yaw_only
+              ? YawOnlyReprojectionError::Create(observations_.cameras[k], alignment_[k],
+                                                 alignment_[0], observations_.pixels[k][i])
+              : ReprojectionError::Create(observations_.cameras[k], observations_.pixels[k][i]);
+      problem_->AddResidualBlock(cost, MakePixelLoss(options_),
+                                 yaw_only ? &yaw_[j] : quaternion_[j], center_[j], point);
+    }
+    if (config_.constant_points) problem_->SetParameterBlockConstant(point);
+  }
+  if (!yaw_only) {
+    const double sigma_rad = options_.gravity_sigma_deg * kDegToRad;
+    const double weight =
+        (options_.pixel_sigma_px / sigma_rad) * (options_.pixel_sigma_px / sigma_rad);
+    for (int j = 0; j < 2; ++j) {
+      problem_->AddResidualBlock(GravityPriorError::Create(observations_.gravity_in_cam[0],
+                                                           observations_.gravity_in_cam[j + 1]),
+                                 new ceres::ScaledLoss(nullptr, weight, ceres::TAKE_OWNERSHIP),
+                                 quaternion_[j]);
+    }
+  }
+  for (int j = 0; j < 2; ++j) {
+    if (yaw_only) {
+      problem_->SetManifold(&yaw_[j], CreateYawManifold());
+    } else {
+      problem_->SetManifold(quaternion_[j], new ceres::QuaternionManifold);
+    }
+  }
+  // Gauge: camera 1 is not in the problem; |C_2| = 1.
+  problem_->SetManifold(center_[0], new ceres::SphereManifold<3>);
+  built_ = true;
+  message_.clear();
+  return true;
+}
+
+ThreeViewPose ThreeViewBundleAdjuster::CurrentPose() const {
+  ThreeViewPose pose;
+  CameraPose* poses[2] = {&pose.cam2_from_cam1, &pose.cam3_from_cam1};
+  const bool yaw_only =
+      options_.rotation_model == ThreeViewBundleAdjustmentOptions::RotationModel::kYawOnly;
+  for (int j = 0; j < 2; ++j) {
+    if (yaw_only) {
+      poses[j]->R = alignment_[j + 1].transpose() * RotationAboutY(yaw_[j]) * alignment_[0];
+    } else {
+      Eigen::Quaterniond q(quaternion_[j][0], quaternion_[j][1], quaternion_[j][2],
+                           quaternion_[j][3]);
+      poses[j]->R = q.normalized().toRotationMatrix();
+    }
+    const Eigen::Vector3d c(center_[j][0], center_[j][1], center_[j][2]);
+    poses[j]->t = -poses[j]->R * c;
+  }
+  return pose;
+}
+
+ThreeViewBundleAdjustmentSummary ThreeViewBundleAdjuster::Solve() {
+  ThreeViewBundleAdjustmentSummary out;
+  if (!built_) {
+    out.message = message_.empty() ? "Solve() without a successful Build()" : message_;
+    return out;
+  }
+  out.num_points = static_cast<int>(points_.size());
+  out.num_residual_blocks = problem_->NumResidualBlocks();
+  const ThreeViewPose before = CurrentPose();
+  // Keep copies to restore on failure.
+  double yaw_backup[2] = {yaw_[0], yaw_[1]};
+  double quaternion_backup[2][4], center_backup[2][3];
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 4; ++i) quaternion_backup[j][i] = quaternion_[j][i];
+    for (int i = 0; i < 3; ++i) center_backup[j][i] = center_[j][i];
+  }
+  const std::vector<Eigen::Vector3d> points_backup = points_;
+
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = options_.linear_solver_type;
+  solver_options.max_num_iterations = options_.max_num_iterations;
+  solver_options.num_threads = options_.num_threads;
+  solver_options.function_tolerance = options_.function_tolerance;
+  solver_options.gradient_tolerance = options_.gradient_tolerance;
+  solver_options.parameter_tolerance = options_.parameter_tolerance;
+  solver_options.logging_type = ceres::SILENT;
+  solver_options.minimizer_progress_to_stdout = false;
+  std::string error;
+  if (!solver_options.IsValid(&error)) {
+    out.message = "invalid Ceres options: " + error;
+    out.pose = before;
+    return out;
+  }
+  ceres::Solver::Summary summary;
+  const auto start = std::chrono::steady_clock::now();
+  ceres::Solve(solver_options, problem_.get(), &summary);
+  out.solve_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.initial_cost = summary.initial_cost;
+  out.final_cost = summary.final_cost;
+  out.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
+  out.termination = summary.termination_type;
+  out.brief_report = summary.BriefReport();
+  out.pose = CurrentPose();
+  if (!summary.IsSolutionUsable() || !out.pose.IsFinite()) {
+    out.message = "Ceres failed: " + summary.message;
+    for (int j = 0; j < 2; ++j) {
+      yaw_[j] = yaw_backup[j];
+      for (int i = 0; i < 4; ++i) quaternion_[j][i] = quaternion_backup[j][i];
+      for (int i = 0; i < 3; ++i) center_[j][i] = center_backup[j][i];
+    }
+    points_ = points_backup;
+    out.pose = before;
+    return out;
+  }
+  out.success = true;
+  return out;
+}
+
+}  // namespace trigrav

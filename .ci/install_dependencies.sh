@@ -6,6 +6,7 @@ packages=(
   build-essential cmake
   libeigen3-dev libceres-dev libsuitesparse-dev libgoogle-glog-dev libgflags-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  python3-matplotlib
 )
 missing=()
 for package in "${packages[@]}"; do

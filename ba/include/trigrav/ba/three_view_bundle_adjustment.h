@@ -36,8 +36,7 @@ struct ThreeViewBundleAdjustmentConfig {
 struct ThreeViewBundleAdjustmentOptions {
   enum class RotationModel {
     // R_k = A_k^T R_y(yaw_k) A_1: pitch and roll exactly as the measured gravity says; one angle
-    // per
-    // camera with YawManifold.
+    // per camera with YawManifold.
     kYawOnly,
     // R_k free (quaternion on ceres::QuaternionManifold) with a GravityPriorError per camera 2, 3
     // weighted by (pixel_sigma_px / gravity_sigma)^2: pitch and roll may move when the IMU is off.

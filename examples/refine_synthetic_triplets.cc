@@ -43,12 +43,6 @@ DEFINE_uint64(seed, 1, "Random seed; the same seed gives the same output.");
 
 namespace {
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
 trigrav::InitializeAndRefineOptions MakeOptions() {
   trigrav::InitializeAndRefineOptions options;
   CHECK(trigrav::ParseInitialSolver(FLAGS_solver, &options.solver))
@@ -126,7 +120,8 @@ int main(int argc, char** argv) {
     ransac_ms.push_back(1e3 * estimate.ransac_time_s);
     if (trial < FLAGS_print_trials) {
       std::printf(
-          "trial %d: %d inliers, worse view: rotation %.4f -> %.4f deg, translation %.4f -> %.4f deg, "
+          "trial %d: %d inliers, worse view: rotation %.4f -> %.4f deg, translation %.4f -> %.4f "
+          "deg, "
           "scale %.5f -> %.5f, BA %.2f ms%s%s\n  %s\n",
           trial, estimate.num_inliers, raw.MaxRotationDeg(), refined.MaxRotationDeg(),
           raw.MaxTranslationDeg(), refined.MaxTranslationDeg(), raw.relative_scale,
@@ -138,7 +133,8 @@ int main(int argc, char** argv) {
       "median over %zu trials (%d failures), views 2 and 3 pooled: rotation %.4f -> %.4f deg, "
       "translation "
       "%.4f -> %.4f deg, scale %.5f -> %.5f; RANSAC %.2f ms, BA %.2f ms\n",
-      scale.size(), failures, Median(raw_rotation), Median(rotation), Median(raw_translation),
-      Median(translation), Median(raw_scale), Median(scale), Median(ransac_ms), Median(ba_ms));
+      scale.size(), failures, trigrav::Median(raw_rotation), trigrav::Median(rotation),
+      trigrav::Median(raw_translation), trigrav::Median(translation), trigrav::Median(raw_scale),
+      trigrav::Median(scale), trigrav::Median(ransac_ms), trigrav::Median(ba_ms));
   return 0;
 }

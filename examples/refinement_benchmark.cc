@@ -1,10 +1,13 @@
-// Refined vs raw: for every initial solver, image noise level (0-2 px, exact IMU) and IMU noise level
-// (0-1 deg on pitch and roll, 1 px), the median rotation, translation and relative-scale errors of
-// the RANSAC estimate ("raw") and of its bundle adjustment ("refined"), for the yaw-only and the
-// gravity-prior rotation models. Writes one CSV row per setting; plot with
+// Refined vs raw: for every initial solver, image noise level (0-2 px, exact IMU) and IMU noise
+// level (0-1 deg on pitch and roll, 1 px), the median rotation, translation and relative-scale
+// errors of the RANSAC estimate ("raw") and of its bundle adjustment ("refined"), for the yaw-only
+// and the gravity-prior rotation models. Writes one CSV row per setting; plot with
 // examples/plot_refinement.py.
 //
 //   refinement_benchmark --trials=50 --output=refinement.csv
+
+#include <gflags/gflags.h>
+#include <glog/logging.h>
 
 #include <algorithm>
 #include <atomic>
@@ -15,9 +18,6 @@
 #include <thread>
 #include <vector>
 
-#include <gflags/gflags.h>
-#include <glog/logging.h>
-
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/synthetic_scene.h"
@@ -25,7 +25,8 @@
 DEFINE_int32(trials, 50, "Scenes per setting.");
 DEFINE_int32(points, 100, "Triplets per scene.");
 DEFINE_double(outlier_ratio, 0.2, "Fraction of outlier triplets.");
-DEFINE_double(threshold_sigmas, 3.0,
+DEFINE_double(threshold_sigmas,
+              3.0,
               "RANSAC inlier threshold in units of the image noise sigma (at least 0.5 px).");
 DEFINE_uint64(seed, 1, "Seed of the scenes (the same for every solver and model).");
 DEFINE_int32(threads, 2, "Worker threads.");
@@ -45,13 +46,6 @@ struct Setting {
 struct Medians {
   double rotation = 0.0, translation = 0.0, scale = 0.0;
 };
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return NAN;
-  const auto middle = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 struct Result {
   Setting setting;
@@ -98,17 +92,19 @@ Result Run(const Setting& setting) {
     refined[2].push_back(e1.relative_scale);
     ba_ms.push_back(1e3 * estimate.ba_time_s);
   }
-  result.raw = {Median(raw[0]), Median(raw[1]), Median(raw[2])};
-  result.refined = {Median(refined[0]), Median(refined[1]), Median(refined[2])};
-  result.ba_ms = Median(ba_ms);
+  result.raw = {trigrav::Median(raw[0]), trigrav::Median(raw[1]), trigrav::Median(raw[2])};
+  result.refined = {trigrav::Median(refined[0]), trigrav::Median(refined[1]),
+                    trigrav::Median(refined[2])};
+  result.ba_ms = trigrav::Median(ba_ms);
   return result;
 }
 
 std::vector<Setting> Settings() {
   using trigrav::InitialSolver;
   const std::vector<InitialSolver> solvers = {
-      InitialSolver::kTrifocal3pt,    InitialSolver::kTrifocal3ptSextic, InitialSolver::kTrifocal4pt,
-      InitialSolver::kTrifocalLinear, InitialSolver::kEssential5pt,      InitialSolver::kEssential8pt};
+      InitialSolver::kTrifocal3pt,  InitialSolver::kTrifocal3ptSextic,
+      InitialSolver::kTrifocal4pt,  InitialSolver::kTrifocalLinear,
+      InitialSolver::kEssential5pt, InitialSolver::kEssential8pt};
   std::vector<Setting> settings;
   if (FLAGS_quick) {
     settings.push_back({InitialSolver::kTrifocal3pt, RotationModel::kYawOnly, 0.0, 0.0});
@@ -118,7 +114,8 @@ std::vector<Setting> Settings() {
   }
   for (const InitialSolver solver : solvers) {
     for (const RotationModel model : {RotationModel::kYawOnly, RotationModel::kGravityPrior}) {
-      for (const double noise : {0.0, 0.5, 1.0, 1.5, 2.0}) settings.push_back({solver, model, noise, 0.0});
+      for (const double noise : {0.0, 0.5, 1.0, 1.5, 2.0})
+        settings.push_back({solver, model, noise, 0.0});
       for (const double imu : {0.25, 0.5, 0.75, 1.0}) settings.push_back({solver, model, 1.0, imu});
     }
   }
@@ -161,8 +158,8 @@ int main(int argc, char** argv) {
         << (r.setting.model == RotationModel::kYawOnly ? "yaw-only" : "gravity-prior") << ','
         << r.setting.noise_px << ',' << r.setting.imu_deg << ',' << FLAGS_trials << ','
         << r.failures << ',' << r.raw.rotation << ',' << r.raw.translation << ',' << r.raw.scale
-        << ',' << r.refined.rotation << ',' << r.refined.translation << ',' << r.refined.scale << ','
-        << r.ba_ms << '\n';
+        << ',' << r.refined.rotation << ',' << r.refined.translation << ',' << r.refined.scale
+        << ',' << r.ba_ms << '\n';
   }
   std::printf("wrote %zu settings x %d trials to %s\n", results.size(), FLAGS_trials,
               FLAGS_output.c_str());

@@ -3,11 +3,11 @@
 // Counters: median rotation / translation error (deg, pooled over views 2 and 3) and the median
 // number of RANSAC iterations over a pool of 20 problems. Run: ./build/examples/robust_benchmark
 
+#include <benchmark/benchmark.h>
+
 #include <algorithm>
 #include <random>
 #include <vector>
-
-#include <benchmark/benchmark.h>
 
 #include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/robust_three_view.h"
@@ -26,15 +26,11 @@ const std::vector<trigrav::SyntheticScene>& Problems() {
     options.pixel_noise_px = 0.5;
     options.outlier_ratio = 0.3;
     std::vector<trigrav::SyntheticScene> scenes;
-    for (int i = 0; i < kNumProblems; ++i) scenes.push_back(trigrav::GenerateSyntheticScene(options, &rng));
+    for (int i = 0; i < kNumProblems; ++i)
+      scenes.push_back(trigrav::GenerateSyntheticScene(options, &rng));
     return scenes;
   }();
   return problems;
-}
-
-double Median(std::vector<double> values) {
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
 }
 
 void BM_RobustEstimate(benchmark::State& state, trigrav::InitialSolver solver) {
@@ -62,24 +58,30 @@ void BM_RobustEstimate(benchmark::State& state, trigrav::InitialSolver solver) {
       iterations.push_back(estimate.iterations);
     }
   }
-  state.counters["rot_deg"] = Median(rotation_errors);
-  state.counters["trans_deg"] = Median(translation_errors);
-  state.counters["iterations"] = Median(iterations);
+  state.counters["rot_deg"] = trigrav::Median(rotation_errors);
+  state.counters["trans_deg"] = trigrav::Median(translation_errors);
+  state.counters["iterations"] = trigrav::Median(iterations);
 }
 
 }  // namespace
 
 BENCHMARK_CAPTURE(BM_RobustEstimate, 3pt, trigrav::InitialSolver::kTrifocal3pt)
-    ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
 BENCHMARK_CAPTURE(BM_RobustEstimate, 3pt_sextic, trigrav::InitialSolver::kTrifocal3ptSextic)
-    ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
 BENCHMARK_CAPTURE(BM_RobustEstimate, 4pt, trigrav::InitialSolver::kTrifocal4pt)
-    ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
 BENCHMARK_CAPTURE(BM_RobustEstimate, 7pt_linear, trigrav::InitialSolver::kTrifocalLinear)
-    ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
 BENCHMARK_CAPTURE(BM_RobustEstimate, 5pt, trigrav::InitialSolver::kEssential5pt)
-    ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
 BENCHMARK_CAPTURE(BM_RobustEstimate, 8pt, trigrav::InitialSolver::kEssential8pt)
-    ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
 
 BENCHMARK_MAIN();

@@ -1,8 +1,11 @@
-// Generates synthetic three-view scenes (math note section 6), runs one gravity-aware solver on the raw
-// rays and each camera's measured gravity, and prints per-view rotation and translation errors against
-// the ground truth, plus a summary line of medians.
+// Generates synthetic three-view scenes (math note section 6), runs one gravity-aware solver on the
+// raw rays and each camera's measured gravity, and prints per-view rotation and translation errors
+// against the ground truth, plus a summary line of medians.
 //
 //   synthetic_triplets --solver=4pt --noise_px=1 --imu_noise_deg=0.1 --points=4 --trials=10
+
+#include <gflags/gflags.h>
+#include <glog/logging.h>
 
 #include <algorithm>
 #include <cmath>
@@ -13,15 +16,13 @@
 #include <string>
 #include <vector>
 
-#include <gflags/gflags.h>
-#include <glog/logging.h>
-
 #include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/synthetic_scene.h"
 #include "trigrav/initializers/trifocal_3pt.h"
 #include "trigrav/initializers/trifocal_4pt.h"
 
-DEFINE_string(solver, "4pt",
+DEFINE_string(solver,
+              "4pt",
               "Solver: 3pt (decoupled, best-ranked candidate), 3pt-sextic (the paper's system), "
               "4pt (trigrav's default pipeline), 4pt-note (math note 3.3: no polish), "
               "4pt-paper-enforced (paper III-D), 4pt-paper (paper eqs c8-c11), "
@@ -38,11 +39,16 @@ namespace {
 
 using trigrav::ThreeViewPose;
 using Rays = std::vector<Eigen::Vector3d>;
-using GravitySolver = std::function<int(const Rays&, const Rays&, const Rays&, const Eigen::Vector3d&,
-                                        const Eigen::Vector3d&, const Eigen::Vector3d&,
+using GravitySolver = std::function<int(const Rays&,
+                                        const Rays&,
+                                        const Rays&,
+                                        const Eigen::Vector3d&,
+                                        const Eigen::Vector3d&,
+                                        const Eigen::Vector3d&,
                                         std::vector<ThreeViewPose>*)>;
 
-GravitySolver Trifocal4pt(trigrav::Trifocal4ptRecovery recovery, bool resolve_translations,
+GravitySolver Trifocal4pt(trigrav::Trifocal4ptRecovery recovery,
+                          bool resolve_translations,
                           int polish_iterations) {
   trigrav::Trifocal4ptOptions options;
   options.recovery = recovery;
@@ -58,14 +64,14 @@ GravitySolver Trifocal4pt(trigrav::Trifocal4ptRecovery recovery, bool resolve_tr
 const std::map<std::string, GravitySolver>& Solvers() {
   using trigrav::Trifocal4ptRecovery;
   static const std::map<std::string, GravitySolver> solvers = {
-      {"3pt", [](const Rays& x1, const Rays& x2, const Rays& x3, const Eigen::Vector3d& g1,
-                 const Eigen::Vector3d& g2, const Eigen::Vector3d& g3,
-                 std::vector<ThreeViewPose>* out) {
+      {"3pt",
+       [](const Rays& x1, const Rays& x2, const Rays& x3, const Eigen::Vector3d& g1,
+          const Eigen::Vector3d& g2, const Eigen::Vector3d& g3, std::vector<ThreeViewPose>* out) {
          return trigrav::SolveTrifocal3pt(x1, x2, x3, g1, g2, g3, out);
        }},
-      {"3pt-sextic", [](const Rays& x1, const Rays& x2, const Rays& x3, const Eigen::Vector3d& g1,
-                        const Eigen::Vector3d& g2, const Eigen::Vector3d& g3,
-                        std::vector<ThreeViewPose>* out) {
+      {"3pt-sextic",
+       [](const Rays& x1, const Rays& x2, const Rays& x3, const Eigen::Vector3d& g1,
+          const Eigen::Vector3d& g2, const Eigen::Vector3d& g3, std::vector<ThreeViewPose>* out) {
          return trigrav::SolveTrifocal3ptSextic(x1, x2, x3, g1, g2, g3, out);
        }},
       {"4pt", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 1)},
@@ -75,13 +81,6 @@ const std::map<std::string, GravitySolver>& Solvers() {
       {"4pt-least-squares", Trifocal4pt(Trifocal4ptRecovery::kLeastSquares, false, 0)},
   };
   return solvers;
-}
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return NAN;
-  const auto middle = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 }  // namespace
@@ -94,7 +93,8 @@ int main(int argc, char** argv) {
   CHECK(solver != Solvers().end()) << "unknown --solver=" << FLAGS_solver;
   CHECK_GT(FLAGS_trials, 0) << "--trials must be positive";
   if (FLAGS_solver.rfind("3pt", 0) == 0) {
-    CHECK_EQ(FLAGS_points, 3) << "--solver=" << FLAGS_solver << " takes exactly 3 triplets: --points=3";
+    CHECK_EQ(FLAGS_points, 3) << "--solver=" << FLAGS_solver
+                              << " takes exactly 3 triplets: --points=3";
   } else {
     CHECK_GE(FLAGS_points, 4) << "--solver=" << FLAGS_solver << " needs --points >= 4";
   }
@@ -119,10 +119,9 @@ int main(int argc, char** argv) {
   for (int trial = 0; trial < FLAGS_trials; ++trial) {
     const trigrav::SyntheticScene scene = trigrav::GenerateSyntheticScene(scene_options, &rng);
     std::vector<ThreeViewPose> solutions;
-    const int count = solver->second(scene.rays[0], scene.rays[1], scene.rays[2],
-                                     scene.gravity_in_cam_measured[0],
-                                     scene.gravity_in_cam_measured[1],
-                                     scene.gravity_in_cam_measured[2], &solutions);
+    const int count = solver->second(
+        scene.rays[0], scene.rays[1], scene.rays[2], scene.gravity_in_cam_measured[0],
+        scene.gravity_in_cam_measured[1], scene.gravity_in_cam_measured[2], &solutions);
     if (count == 0) {
       ++failures;
       if (trial < FLAGS_print_trials) std::printf("%6d   no solution\n", trial);
@@ -144,7 +143,7 @@ int main(int argc, char** argv) {
   std::printf(
       "summary: %d trials, %d without solution, median rotation %.4g deg, median translation %.4g "
       "deg, median |log scale ratio| %.4g\n",
-      FLAGS_trials, failures, Median(rotation_errors), Median(translation_errors),
-      Median(scale_errors));
+      FLAGS_trials, failures, trigrav::Median(rotation_errors), trigrav::Median(translation_errors),
+      trigrav::Median(scale_errors));
   return 0;
 }

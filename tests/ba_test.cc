@@ -157,12 +157,6 @@ struct RunErrors {
   int failures = 0;
 };
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
 SyntheticSceneOptions SceneOptions(double imu_noise_deg) {
   SyntheticSceneOptions options;
   options.num_points = 100;

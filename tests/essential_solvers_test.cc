@@ -47,7 +47,6 @@ SyntheticSceneOptions SceneOptions(int num_points, double noise_px = 0.0) {
   return options;
 }
 
-using testing_utils::Median;
 
 TEST(Essential5pt, TruePoseAmongSolutionsNoiseFree) {
   std::mt19937_64 rng(11);

@@ -2,12 +2,12 @@
 #ifndef TRIGRAV_TESTS_SOLVER_TEST_UTILS_H_
 #define TRIGRAV_TESTS_SOLVER_TEST_UTILS_H_
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <random>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/synthetic_scene.h"
@@ -15,18 +15,15 @@
 namespace trigrav {
 namespace testing_utils {
 
-inline double Median(std::vector<double> values) {
-  const auto middle = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
 // Median rotation error (deg, views 2 and 3 pooled) of the first (best-ranked) solution of
-// solve(scene, &solutions) over num_scenes scenes drawn with `seed`; a scene without solution counts
-// 180 deg for both views and is counted in *no_solution when given.
+// solve(scene, &solutions) over num_scenes scenes drawn with `seed`; a scene without solution
+// counts 180 deg for both views and is counted in *no_solution when given.
 template <typename Solve>
-double MedianFirstSolutionRotationErrorDeg(const SyntheticSceneOptions& options, std::uint64_t seed,
-                                           int num_scenes, Solve solve, int* no_solution = nullptr) {
+double MedianFirstSolutionRotationErrorDeg(const SyntheticSceneOptions& options,
+                                           std::uint64_t seed,
+                                           int num_scenes,
+                                           Solve solve,
+                                           int* no_solution = nullptr) {
   std::mt19937_64 rng(seed);
   std::vector<double> errors;
   std::vector<ThreeViewPose> solutions;

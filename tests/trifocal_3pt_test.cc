@@ -85,7 +85,6 @@ int ClosestCandidate(const ThreeViewPose& truth, const std::vector<ThreeViewPose
   return best;
 }
 
-using testing_utils::Median;
 
 // The ground truth of a scene in gravity-aligned frames (the inverse of UnalignThreeViewPose).
 ThreeViewPose AlignedTruth(const ThreeViewPose& truth,

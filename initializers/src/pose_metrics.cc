@@ -1,10 +1,9 @@
 #include "trigrav/initializers/pose_metrics.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include <Eigen/Geometry>
 
 namespace trigrav {
 namespace {
@@ -43,8 +42,8 @@ ThreeViewPoseErrors ComputeThreeViewPoseErrors(const ThreeViewPose& ground_truth
     errors.rotation_deg[k] = RotationErrorDeg(gt[k]->R, est[k]->R);
     errors.translation_deg[k] = DirectionErrorDeg(gt[k]->Center(), est[k]->Center());
   }
-  const double scale_gt = ground_truth.cam3_from_cam1.Center().norm() /
-                          ground_truth.cam2_from_cam1.Center().norm();
+  const double scale_gt =
+      ground_truth.cam3_from_cam1.Center().norm() / ground_truth.cam2_from_cam1.Center().norm();
   const double scale_est =
       estimate.cam3_from_cam1.Center().norm() / estimate.cam2_from_cam1.Center().norm();
   errors.relative_scale = std::abs(std::log(scale_est / scale_gt));
@@ -52,6 +51,13 @@ ThreeViewPoseErrors ComputeThreeViewPoseErrors(const ThreeViewPose& ground_truth
     errors.relative_scale = std::numeric_limits<double>::infinity();
   }
   return errors;
+}
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const auto middle = values.begin() + values.size() / 2;
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
 }
 
 }  // namespace trigrav

@@ -2,13 +2,14 @@
 #define TRIGRAV_INITIALIZERS_POSE_METRICS_H_
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "trigrav/initializers/camera_pose.h"
 
 namespace trigrav {
 
-// Error metrics of the paper (eqs e1, e2) in the atan2 forms of math note section 5, which keep full
-// precision down to 1e-15 rad where arccos floors at about 1e-8 rad. All angles in degrees.
+// Error metrics of the paper (eqs e1, e2) in the atan2 forms of math note section 5, which keep
+// full precision down to 1e-15 rad where arccos floors at about 1e-8 rad. All angles in degrees.
 
 // Angle of R_gt R^T: atan2(|vee(M - M^T)| / 2, (trace M - 1) / 2), M = R_gt R^T.
 double RotationErrorDeg(const Eigen::Matrix3d& R_gt, const Eigen::Matrix3d& R);
@@ -16,9 +17,9 @@ double RotationErrorDeg(const Eigen::Matrix3d& R_gt, const Eigen::Matrix3d& R);
 // Angle between two directions: atan2(|a x b|, a . b). Returns 180 if either vector is zero.
 double DirectionErrorDeg(const Eigen::Vector3d& a_gt, const Eigen::Vector3d& a);
 
-// Errors of views 2 and 3 of an estimated three-view pose against the truth. Translation errors compare
-// camera centres (not fourth columns, which differ when R is wrong). The relative-scale error
-// |log(s_est / s_gt)|, s = |C3| / |C2|, is what only a three-view method can get right.
+// Errors of views 2 and 3 of an estimated three-view pose against the truth. Translation errors
+// compare camera centres (not fourth columns, which differ when R is wrong). The relative-scale
+// error |log(s_est / s_gt)|, s = |C3| / |C2|, is what only a three-view method can get right.
 struct ThreeViewPoseErrors {
   double rotation_deg[2] = {0.0, 0.0};     // views 2 and 3
   double translation_deg[2] = {0.0, 0.0};  // views 2 and 3, direction of the camera centre
@@ -30,6 +31,9 @@ struct ThreeViewPoseErrors {
 
 ThreeViewPoseErrors ComputeThreeViewPoseErrors(const ThreeViewPose& ground_truth,
                                                const ThreeViewPose& estimate);
+
+// Median of a sample of errors (the upper median for an even count); NaN for an empty sample.
+double Median(std::vector<double> values);
 
 }  // namespace trigrav
 

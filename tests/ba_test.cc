@@ -9,7 +9,6 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -283,27 +282,26 @@ TEST(InitializeAndRefineTest, RefineFalseKeepsTheInitialPose) {
   EXPECT_EQ(estimate.refined.cam3_from_cam1.t, estimate.initial.cam3_from_cam1.t);
 }
 
-TEST(InitializeAndRefineTest, RefinementOf300InliersIsFast) {
+// A triplet with ~300 inliers (the size of the 10 ms timing target, measured in the README with
+// refine_synthetic_triplets, not here): noise-free, both rotation models converge to the truth.
+TEST(InitializeAndRefineTest, RefinesThreeHundredInliersToTheTruth) {
   std::mt19937_64 rng(5);
   SyntheticSceneOptions scene_options = SceneOptions(0.0);
-  scene_options.num_points = 375;  // ~300 inliers
-  std::vector<double> times;
+  scene_options.num_points = 375;  // 20 % outliers: 300 inliers
+  scene_options.pixel_noise_px = 0.0;
   for (const RotationModel model : {RotationModel::kYawOnly, RotationModel::kGravityPrior}) {
-    times.clear();
-    int points = 0;
-    for (int p = 0; p < 10; ++p) {
+    for (int p = 0; p < 5; ++p) {
       const SyntheticScene scene = GenerateSyntheticScene(scene_options, &rng);
       InitializeAndRefineOptions options;
       options.bundle_adjustment.rotation_model = model;
       const ThreeViewEstimate estimate = InitializeAndRefine(ToObservations(scene), options);
       ASSERT_TRUE(estimate.refinement_ran) << estimate.message;
-      times.push_back(estimate.ba_time_s);
-      points = estimate.ba_num_points;
+      EXPECT_GE(estimate.ba_num_points, 280);
+      const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(scene.ground_truth, estimate.refined);
+      EXPECT_LT(e.MaxRotationDeg(), 1e-6);
+      EXPECT_LT(e.MaxTranslationDeg(), 1e-6);
+      EXPECT_LT(e.relative_scale, 1e-6);
     }
-    std::cout << (model == RotationModel::kYawOnly ? "yaw-only" : "gravity prior")
-              << ": refinement of " << points << " inliers, median " << 1e3 * Median(times)
-              << " ms\n";
-    EXPECT_LT(Median(times), 0.1);  // generous: the target is 10 ms, machines are shared
   }
 }
 

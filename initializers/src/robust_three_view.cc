@@ -12,6 +12,7 @@
 #include "trigrav/initializers/trifocal_3pt.h"
 #include "trigrav/initializers/trifocal_4pt.h"
 #include "trigrav/initializers/trifocal_linear.h"
+#include "trigrav/initializers/two_view_to_three_view.h"
 
 namespace trigrav {
 namespace {
@@ -43,32 +44,8 @@ struct Workspace {
   std::vector<CameraPose> pair12, pair13;
 };
 
-// Three-view models of a two-view method (math note section 7): every combination of a (1,2) and a
-// (1,3) solution, with the centre of camera 3 rescaled by kappa = <l2, l3> / <l3, l3>, l_k the view-1
-// depths of the triplets from pair (1,k) alone. Combinations with kappa <= 0 are inconsistent.
-void CombinePairs(const ViewRays& rays, const std::vector<CameraPose>& pair12,
-                  const std::vector<CameraPose>& pair13, std::vector<ThreeViewPose>* poses) {
-  for (const CameraPose& cam2 : pair12) {
-    const Eigen::Vector3d center2 = cam2.Center();
-    for (const CameraPose& cam3 : pair13) {
-      const Eigen::Vector3d center3 = cam3.Center();
-      double cross = 0.0, squared = 0.0;
-      for (std::size_t n = 0; n < rays[0].size(); ++n) {
-        const double depth2 = internal::ViewOneDepth(rays[0][n], rays[1][n], cam2.R, center2);
-        const double depth3 = internal::ViewOneDepth(rays[0][n], rays[2][n], cam3.R, center3);
-        cross += depth2 * depth3;
-        squared += depth3 * depth3;
-      }
-      const double kappa = cross / squared;
-      if (!(kappa > 0.0) || !std::isfinite(kappa)) continue;
-      ThreeViewPose pose;
-      pose.cam2_from_cam1 = cam2;
-      pose.cam3_from_cam1.R = cam3.R;
-      pose.cam3_from_cam1.t = kappa * cam3.t;
-      poses->push_back(pose);
-    }
-  }
-}
+// Three-view models of a two-view method (math note section 7): CombineTwoViewPairs
+// (two_view_to_three_view.h) rescales camera 3 by the view-1 depth ratio kappa of the two pairs.
 
 // Method policies. Minimal() and Refine() append three-view poses in the original frames from the
 // selected triplets' rays (aligned ones if kAligned); Refine() gets all inliers of a model.
@@ -87,7 +64,7 @@ void SolveTwoViewPairs(const TripletData&, const ViewRays& raw, Workspace* work,
                        std::vector<ThreeViewPose>* poses) {
   kSolvePair(raw[0], raw[1], &work->pair12);
   kSolvePair(raw[0], raw[2], &work->pair13);
-  CombinePairs(raw, work->pair12, work->pair13, poses);
+  CombineTwoViewPairs(raw[0], raw[1], raw[2], work->pair12, work->pair13, poses);
 }
 
 void SolveLinear(const TripletData&, const ViewRays& raw, Workspace* work,

@@ -57,7 +57,7 @@ void RunSolverBenchmark(benchmark::State& state, int num_points, Solver solve) {
     if (solve(p.x1, p.x2, p.x3, &solutions) > 0) {
       const trigrav::ThreeViewPoseErrors e =
           trigrav::ComputeThreeViewPoseErrors(p.ground_truth, solutions[0]);
-      found += e.MaxRotationDeg() < 1e-6 && e.MaxTranslationDeg() < 1e-6;
+      found += e.MaxAngleDeg() < 1e-6;
     }
   }
   std::size_t i = 0;

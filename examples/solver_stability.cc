@@ -87,21 +87,18 @@ void RunScene(const trigrav::SyntheticScene& scene, Statistics* stats) {
     AddErrors(failure, &stats->rotation_oracle, &stats->translation_oracle);
     return;
   }
-  auto worst = [](const trigrav::ThreeViewPoseErrors& e) {
-    return std::max(e.MaxRotationDeg(), e.MaxTranslationDeg());
-  };
   const trigrav::ThreeViewPoseErrors first =
       trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, solutions[0]);
   trigrav::ThreeViewPoseErrors oracle = first;
   for (const ThreeViewPose& pose : solutions) {
     const trigrav::ThreeViewPoseErrors e =
         trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, pose);
-    if (worst(e) < worst(oracle)) oracle = e;
+    if (e.MaxAngleDeg() < oracle.MaxAngleDeg()) oracle = e;
   }
   AddErrors(first, &stats->rotation_first, &stats->translation_first);
   AddErrors(oracle, &stats->rotation_oracle, &stats->translation_oracle);
-  stats->found += worst(oracle) < FLAGS_found_deg;
-  stats->found_first += worst(first) < FLAGS_found_deg;
+  stats->found += oracle.MaxAngleDeg() < FLAGS_found_deg;
+  stats->found_first += first.MaxAngleDeg() < FLAGS_found_deg;
 }
 
 }  // namespace

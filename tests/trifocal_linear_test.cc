@@ -24,10 +24,6 @@ int SolveScene(const SyntheticScene& scene, std::vector<ThreeViewPose>* solution
   return SolveTrifocalLinear(scene.rays[0], scene.rays[1], scene.rays[2], solutions);
 }
 
-double MaxError(const ThreeViewPoseErrors& e) {
-  return std::max(e.MaxRotationDeg(), e.MaxTranslationDeg());
-}
-
 // Noise-free: the first solution is the truth (1e-6 deg, relative scale 1e-6) on every scene.
 void ExpectExactNoiseFree(int num_points, int num_scenes, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
@@ -48,11 +44,11 @@ void ExpectExactNoiseFree(int num_points, int num_scenes, std::uint64_t seed) {
     ASSERT_EQ(count, 1);
     EXPECT_NEAR(solutions[0].cam2_from_cam1.Center().norm(), 1.0, 1e-12);
     const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(scene.ground_truth, solutions[0]);
-    worst_angle = std::max(worst_angle, MaxError(e));
+    worst_angle = std::max(worst_angle, e.MaxAngleDeg());
     worst_scale = std::max(worst_scale, e.relative_scale);
-    if (!(MaxError(e) < 1e-6 && e.relative_scale < 1e-6)) {
+    if (!(e.MaxAngleDeg() < 1e-6 && e.relative_scale < 1e-6)) {
       ++failures;
-      ADD_FAILURE() << num_points << " triplets, trial " << trial << ": error " << MaxError(e)
+      ADD_FAILURE() << num_points << " triplets, trial " << trial << ": error " << e.MaxAngleDeg()
                     << " deg, relative scale " << e.relative_scale;
     }
   }
@@ -104,7 +100,7 @@ TEST(TrifocalLinear, GeneralRotationsAndRayFrames) {
     std::vector<ThreeViewPose> solutions;
     ASSERT_EQ(SolveTrifocalLinear(rays[0], rays[1], rays[2], &solutions), 1) << trial;
     const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(truth, solutions[0]);
-    EXPECT_LT(MaxError(e), 1e-6) << trial;
+    EXPECT_LT(e.MaxAngleDeg(), 1e-6) << trial;
     EXPECT_LT(e.relative_scale, 1e-6) << trial;
   }
 }

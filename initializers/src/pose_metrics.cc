@@ -33,6 +33,10 @@ double ThreeViewPoseErrors::MaxTranslationDeg() const {
   return std::max(translation_deg[0], translation_deg[1]);
 }
 
+double ThreeViewPoseErrors::MaxAngleDeg() const {
+  return std::max(MaxRotationDeg(), MaxTranslationDeg());
+}
+
 ThreeViewPoseErrors ComputeThreeViewPoseErrors(const ThreeViewPose& ground_truth,
                                                const ThreeViewPose& estimate) {
   ThreeViewPoseErrors errors;

@@ -233,7 +233,7 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen
   } else {
     M = internal::StackedTriangularFactor<17>(
         x1.size(), [&](std::size_t n) { return IncidenceRows(x1[n], x2[n], x3[n]); });
-    if (!M.allFinite()) return 0;
+    if (!M.allFinite() || internal::HasMultipleNullDirections<17>(M)) return 0;
     q = internal::SmallestRightSingularVectorOfTriangular<17>(M);
   }
   if (q.isZero()) return 0;

@@ -27,6 +27,8 @@ struct ThreeViewPoseErrors {
 
   double MaxRotationDeg() const;
   double MaxTranslationDeg() const;
+  // The largest angle of all four: max(MaxRotationDeg(), MaxTranslationDeg()).
+  double MaxAngleDeg() const;
 };
 
 ThreeViewPoseErrors ComputeThreeViewPoseErrors(const ThreeViewPose& ground_truth,

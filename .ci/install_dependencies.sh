@@ -7,6 +7,9 @@ packages=(
   libeigen3-dev libceres-dev libsuitesparse-dev libgoogle-glog-dev libgflags-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-matplotlib
+  libopencv-dev          # KITTI tool only (SIFT features); the library never links it
+  libopengv-dev          # optional peer rows in the comparisons; the library never links it
+  clang libclang-rt-14-dev  # libFuzzer and the sanitizer runtime for the hardening step
 )
 missing=()
 for package in "${packages[@]}"; do

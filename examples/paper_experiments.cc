@@ -42,9 +42,11 @@
 #include <random>
 #include <string>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <thread>
 #include <vector>
 
+#include "require_flag.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/initializers/essential_5pt.h"
 #include "trigrav/initializers/essential_8pt.h"
@@ -351,7 +353,7 @@ double MeanLog10(const std::vector<double>& values) {
 std::ofstream OpenCsv(const std::string& name) {
   const std::string path = FLAGS_output_dir + "/" + name;
   std::ofstream csv(path);
-  CHECK(csv) << "cannot write " << path;
+  trigrav::examples::RequireFlag(static_cast<bool>(csv), "cannot write " + path);
   csv.precision(6);
   return csv;
 }
@@ -490,10 +492,17 @@ int main(int argc, char** argv) {
   gflags::SetUsageMessage("The paper's synthetic experiments on trigrav's solvers; writes CSVs.");
   gflags::ParseCommandLineFlags(&argc, &argv, true);
   google::InitGoogleLogging(argv[0]);
-  CHECK_GT(FLAGS_threads, 0) << "--threads must be positive";
-  CHECK_GT(FLAGS_trials, 0.0) << "--trials must be positive";
-  CHECK_GE(FLAGS_sample20_triplets, 8) << "--sample20_triplets must be >= 8";
+  using trigrav::examples::RequireFlag;
+  RequireFlag(FLAGS_threads >= 1 && FLAGS_threads <= 256, "--threads must be in [1, 256]");
+  // Up to 100 x the paper's trial counts (500000 scenes per level) keeps every count an int.
+  RequireFlag(FLAGS_trials > 0.0 && FLAGS_trials <= 100.0, "--trials must be in (0, 100]");
+  RequireFlag(FLAGS_sample20_triplets >= 8, "--sample20_triplets must be >= 8");
+  // Checked before the run, so that a bad folder fails at once, not after the experiments.
   ::mkdir(FLAGS_output_dir.c_str(), 0755);
+  struct stat folder;
+  RequireFlag(::stat(FLAGS_output_dir.c_str(), &folder) == 0 && S_ISDIR(folder.st_mode) &&
+                  ::access(FLAGS_output_dir.c_str(), W_OK) == 0,
+              "cannot create or write --output_dir=" + FLAGS_output_dir);
   const auto start = std::chrono::steady_clock::now();
 
   // Work items: chunks of trials of every level, each with its own seed.

@@ -9,11 +9,13 @@
 #include <glog/logging.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "require_flag.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/synthetic_scene.h"
@@ -43,17 +45,22 @@ DEFINE_uint64(seed, 1, "Random seed; the same seed gives the same output.");
 
 namespace {
 
+using trigrav::examples::RequireFlag;
+
+bool PositiveFinite(double value) { return value > 0.0 && std::isfinite(value); }
+bool NonNegativeFinite(double value) { return value >= 0.0 && std::isfinite(value); }
+
 trigrav::InitializeAndRefineOptions MakeOptions() {
   trigrav::InitializeAndRefineOptions options;
-  CHECK(trigrav::ParseInitialSolver(FLAGS_solver, &options.solver))
-      << "unknown --solver " << FLAGS_solver;
+  RequireFlag(trigrav::ParseInitialSolver(FLAGS_solver, &options.solver),
+              "unknown --solver=" + FLAGS_solver + " (3pt, 3pt-sextic, 4pt, 7pt-linear, 5pt, 8pt)");
   using Options = trigrav::ThreeViewBundleAdjustmentOptions;
   Options& ba = options.bundle_adjustment;
   if (FLAGS_rotation_model == "yaw-only") {
     ba.rotation_model = Options::RotationModel::kYawOnly;
   } else {
-    CHECK(FLAGS_rotation_model == "gravity-prior")
-        << "--rotation_model must be yaw-only or gravity-prior";
+    RequireFlag(FLAGS_rotation_model == "gravity-prior",
+                "--rotation_model must be yaw-only or gravity-prior");
     ba.rotation_model = Options::RotationModel::kGravityPrior;
   }
   if (FLAGS_loss == "huber") {
@@ -61,9 +68,15 @@ trigrav::InitializeAndRefineOptions MakeOptions() {
   } else if (FLAGS_loss == "cauchy") {
     ba.loss = Options::LossType::kCauchy;
   } else {
-    CHECK(FLAGS_loss == "none") << "--loss must be huber, cauchy or none";
+    RequireFlag(FLAGS_loss == "none", "--loss must be huber, cauchy or none");
     ba.loss = Options::LossType::kNone;
   }
+  RequireFlag(PositiveFinite(FLAGS_loss_scale_px), "--loss_scale_px must be positive and finite");
+  RequireFlag(PositiveFinite(FLAGS_gravity_sigma_deg),
+              "--gravity_sigma_deg must be positive and finite");
+  RequireFlag(PositiveFinite(FLAGS_threshold_px), "--threshold_px must be positive and finite");
+  RequireFlag(FLAGS_max_iterations >= 0, "--max_iterations must be >= 0");
+  RequireFlag(FLAGS_reclassification_rounds >= 0, "--reclassification_rounds must be >= 0");
   ba.loss_scale_px = FLAGS_loss_scale_px;
   ba.gravity_sigma_deg = FLAGS_gravity_sigma_deg;
   ba.pixel_sigma_px = std::max(FLAGS_noise_px, 0.1);
@@ -79,7 +92,16 @@ trigrav::InitializeAndRefineOptions MakeOptions() {
 int main(int argc, char** argv) {
   gflags::ParseCommandLineFlags(&argc, &argv, true);
   google::InitGoogleLogging(argv[0]);
-  CHECK_GT(FLAGS_trials, 0) << "--trials must be positive";
+  RequireFlag(FLAGS_trials > 0, "--trials must be positive");
+  RequireFlag(FLAGS_print_trials >= 0, "--print_trials must be >= 0");
+  RequireFlag(NonNegativeFinite(FLAGS_noise_px), "--noise_px must be finite and >= 0");
+  RequireFlag(NonNegativeFinite(FLAGS_imu_noise_deg), "--imu_noise_deg must be finite and >= 0");
+  RequireFlag(FLAGS_outlier_ratio >= 0.0 && FLAGS_outlier_ratio < 1.0,
+              "--outlier_ratio must be in [0, 1)");
+  trigrav::InitializeAndRefineOptions options = MakeOptions();
+  RequireFlag(FLAGS_points >= trigrav::MinimalSampleSize(options.solver),
+              "--points must be at least the minimal sample of --solver=" + FLAGS_solver + " (" +
+                  std::to_string(trigrav::MinimalSampleSize(options.solver)) + ")");
 
   trigrav::SyntheticSceneOptions scene_options;
   scene_options.num_points = FLAGS_points;
@@ -87,7 +109,6 @@ int main(int argc, char** argv) {
   scene_options.imu_pitch_noise_deg = FLAGS_imu_noise_deg;
   scene_options.imu_roll_noise_deg = FLAGS_imu_noise_deg;
   scene_options.outlier_ratio = FLAGS_outlier_ratio;
-  trigrav::InitializeAndRefineOptions options = MakeOptions();
 
   std::mt19937_64 rng(FLAGS_seed);
   std::vector<double> raw_rotation, raw_translation, raw_scale, rotation, translation, scale;

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <random>
@@ -18,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "require_flag.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/synthetic_scene.h"
@@ -128,11 +130,17 @@ int main(int argc, char** argv) {
   gflags::SetUsageMessage("Refined vs raw three-view errors for every solver; writes a CSV.");
   gflags::ParseCommandLineFlags(&argc, &argv, true);
   google::InitGoogleLogging(argv[0]);
-  CHECK_GT(FLAGS_trials, 0) << "--trials must be positive";
-  CHECK_GE(FLAGS_points, 8) << "--points must be >= 8 (the eight-point baseline's sample)";
-  CHECK(FLAGS_outlier_ratio >= 0.0 && FLAGS_outlier_ratio < 1.0) << "--outlier_ratio in [0, 1)";
-  CHECK_GT(FLAGS_threads, 0) << "--threads must be positive";
-  CHECK_GT(FLAGS_threshold_sigmas, 0.0) << "--threshold_sigmas must be positive";
+  using trigrav::examples::RequireFlag;
+  RequireFlag(FLAGS_trials > 0, "--trials must be positive");
+  RequireFlag(FLAGS_points >= 8, "--points must be >= 8 (the eight-point baseline's sample)");
+  RequireFlag(FLAGS_outlier_ratio >= 0.0 && FLAGS_outlier_ratio < 1.0,
+              "--outlier_ratio must be in [0, 1)");
+  RequireFlag(FLAGS_threads >= 1 && FLAGS_threads <= 256, "--threads must be in [1, 256]");
+  RequireFlag(FLAGS_threshold_sigmas > 0.0 && std::isfinite(FLAGS_threshold_sigmas),
+              "--threshold_sigmas must be positive and finite");
+  // Opened before the run, so that an unwritable path fails at once, not after the benchmark.
+  std::ofstream csv(FLAGS_output);
+  RequireFlag(static_cast<bool>(csv), "cannot write --output=" + FLAGS_output);
   if (FLAGS_quick) FLAGS_trials = std::min(FLAGS_trials, 5);
 
   const std::vector<Setting> settings = Settings();
@@ -149,8 +157,6 @@ int main(int argc, char** argv) {
   for (std::thread& worker : workers) worker.join();
   std::fprintf(stderr, "\n");
 
-  std::ofstream csv(FLAGS_output);
-  CHECK(csv) << "cannot write " << FLAGS_output;
   csv << "solver,model,noise_px,imu_deg,trials,failures,raw_rotation_deg,raw_translation_deg,"
          "raw_scale,refined_rotation_deg,refined_translation_deg,refined_scale,ba_ms\n";
   for (const Result& r : results) {

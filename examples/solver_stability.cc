@@ -18,6 +18,7 @@
 
 #include <gflags/gflags.h>
 
+#include "require_flag.h"
 #include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/synthetic_scene.h"
 #include "trigrav/initializers/trifocal_3pt.h"
@@ -106,10 +107,12 @@ void RunScene(const trigrav::SyntheticScene& scene, Statistics* stats) {
 int main(int argc, char** argv) {
   gflags::SetUsageMessage("Noise-free stability of the 3-point and 4-point trifocal solvers.");
   gflags::ParseCommandLineFlags(&argc, &argv, true);
-  if (FLAGS_trials <= 0 || !(FLAGS_noise_px >= 0.0) || !(FLAGS_found_deg > 0.0)) {
-    std::fprintf(stderr, "--trials and --found_deg must be positive, --noise_px >= 0\n");
-    return 1;
-  }
+  using trigrav::examples::RequireFlag;
+  RequireFlag(FLAGS_trials > 0, "--trials must be positive");
+  RequireFlag(FLAGS_noise_px >= 0.0 && std::isfinite(FLAGS_noise_px),
+              "--noise_px must be finite and >= 0");
+  RequireFlag(FLAGS_found_deg > 0.0 && std::isfinite(FLAGS_found_deg),
+              "--found_deg must be positive and finite");
 
   std::vector<Statistics> all(3);
   all[0].name = "3pt decoupled";

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "require_flag.h"
 #include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/synthetic_scene.h"
 #include "trigrav/initializers/trifocal_3pt.h"
@@ -89,16 +90,23 @@ int main(int argc, char** argv) {
   gflags::SetUsageMessage("Runs a gravity-aware trifocal solver on synthetic triplets.");
   gflags::ParseCommandLineFlags(&argc, &argv, true);
   google::InitGoogleLogging(argv[0]);
+  using trigrav::examples::RequireFlag;
   const auto solver = Solvers().find(FLAGS_solver);
-  CHECK(solver != Solvers().end()) << "unknown --solver=" << FLAGS_solver;
-  CHECK_GT(FLAGS_trials, 0) << "--trials must be positive";
+  RequireFlag(solver != Solvers().end(), "unknown --solver=" + FLAGS_solver);
+  RequireFlag(FLAGS_trials > 0, "--trials must be positive");
+  RequireFlag(FLAGS_print_trials >= 0, "--print_trials must be >= 0");
   if (FLAGS_solver.rfind("3pt", 0) == 0) {
-    CHECK_EQ(FLAGS_points, 3) << "--solver=" << FLAGS_solver
-                              << " takes exactly 3 triplets: --points=3";
+    RequireFlag(FLAGS_points == 3,
+                "--solver=" + FLAGS_solver + " takes exactly 3 triplets: --points=3");
   } else {
-    CHECK_GE(FLAGS_points, 4) << "--solver=" << FLAGS_solver << " needs --points >= 4";
+    RequireFlag(FLAGS_points >= 4, "--solver=" + FLAGS_solver + " needs --points >= 4");
   }
-  CHECK(FLAGS_noise_px >= 0.0 && FLAGS_imu_noise_deg >= 0.0) << "noise levels must be >= 0";
+  RequireFlag(FLAGS_noise_px >= 0.0 && std::isfinite(FLAGS_noise_px),
+              "--noise_px must be finite and >= 0");
+  RequireFlag(FLAGS_imu_noise_deg >= 0.0 && std::isfinite(FLAGS_imu_noise_deg),
+              "--imu_noise_deg must be finite and >= 0");
+  RequireFlag(FLAGS_focal_px > 0.0 && std::isfinite(FLAGS_focal_px),
+              "--focal_px must be positive and finite");
 
   trigrav::SyntheticSceneOptions scene_options;
   scene_options.num_points = FLAGS_points;

@@ -59,13 +59,20 @@ void ThreeViewBundleAdjustmentOptions::Check() const {
   require(positive(gravity_sigma_deg), "gravity_sigma_deg must be positive and finite");
   require(max_num_iterations >= 0, "max_num_iterations must be >= 0");
   require(num_threads >= 1, "num_threads must be >= 1");
-  require(function_tolerance >= 0.0 && gradient_tolerance >= 0.0 && parameter_tolerance >= 0.0,
-          "tolerances must be >= 0");
+  require(function_tolerance >= 0.0, "function_tolerance must be >= 0");
+  require(gradient_tolerance >= 0.0, "gradient_tolerance must be >= 0");
+  require(parameter_tolerance >= 0.0, "parameter_tolerance must be >= 0");
   require(
       rotation_model == RotationModel::kYawOnly || rotation_model == RotationModel::kGravityPrior,
       "unknown rotation_model");
   require(loss == LossType::kNone || loss == LossType::kHuber || loss == LossType::kCauchy,
           "unknown loss");
+  // Ceres aborts (LOG(FATAL)) on an out-of-range solver type; its name round-trips only if valid.
+  ceres::LinearSolverType parsed;
+  require(ceres::StringToLinearSolverType(ceres::LinearSolverTypeToString(linear_solver_type),
+                                          &parsed) &&
+              parsed == linear_solver_type,
+          "unknown linear_solver_type");
 }
 
 ThreeViewBundleAdjuster::ThreeViewBundleAdjuster(const ThreeViewObservations& observations,
@@ -73,12 +80,8 @@ ThreeViewBundleAdjuster::ThreeViewBundleAdjuster(const ThreeViewObservations& ob
                                                  const ThreeViewBundleAdjustmentOptions& options)
     : observations_(observations), config_(config), options_(options) {
   options_.Check();
+  observations_.Check();
   const int n = static_cast<int>(observations_.size());
-  for (int k = 1; k < 3; ++k) {
-    if (observations_.pixels[k].size() != observations_.size()) {
-      throw std::invalid_argument("trigrav: ThreeViewBundleAdjuster: views differ in size");
-    }
-  }
   if (config_.triplets.empty()) {
     for (int i = 0; i < n; ++i) config_.triplets.push_back(i);
   }

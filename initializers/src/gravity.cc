@@ -20,8 +20,10 @@ Eigen::Matrix3d GravityAlignmentFromGravity(const Eigen::Vector3d& gravity_in_ca
     throw std::invalid_argument("trigrav: gravity direction has non-finite entries");
   }
   const double norm = gravity_in_cam.norm();
-  if (!(norm > 0.0) || !std::isfinite(norm)) {
-    throw std::invalid_argument("trigrav: gravity direction has zero length");
+  if (!(norm > 0.0)) throw std::invalid_argument("trigrav: gravity direction has zero length");
+  if (!std::isfinite(norm)) {
+    throw std::invalid_argument(
+        "trigrav: gravity direction is too long (its squared length overflows)");
   }
   // Rows of R: R g = e_y makes the middle row g^T; the first row is the camera axis least parallel to
   // g (x, or z for a camera rolled by 90 deg) made orthogonal to g, the last completes a right-handed

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace trigrav {
 namespace {
@@ -55,6 +56,25 @@ ThreeViewPoseErrors ComputeThreeViewPoseErrors(const ThreeViewPose& ground_truth
     errors.relative_scale = std::numeric_limits<double>::infinity();
   }
   return errors;
+}
+
+YawTiltErrorDeg SplitRotationErrorDeg(const Eigen::Matrix3d& R_gt,
+                                      const Eigen::Matrix3d& R,
+                                      const Eigen::Vector3d& gravity_in_cam) {
+  const double g_norm = gravity_in_cam.norm();
+  if (!(g_norm > 0.0) || !std::isfinite(g_norm)) {
+    throw std::invalid_argument(
+        "trigrav: SplitRotationErrorDeg: gravity_in_cam must be non-zero and finite");
+  }
+  const Eigen::Vector3d g = gravity_in_cam / g_norm;
+  const Eigen::Quaterniond q(Eigen::Matrix3d(R_gt * R.transpose()));
+  const double w = std::abs(q.w());
+  const double v_g = q.vec().dot(g);
+  const double v_perp = (q.vec() - v_g * g).norm();
+  YawTiltErrorDeg split;
+  split.yaw_deg = 2.0 * std::atan2(std::abs(v_g), w) * kRadToDeg;
+  split.tilt_deg = 2.0 * std::atan2(v_perp, std::hypot(w, v_g)) * kRadToDeg;
+  return split;
 }
 
 double Median(std::vector<double> values) {

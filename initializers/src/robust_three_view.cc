@@ -1,8 +1,11 @@
 #include "trigrav/initializers/robust_three_view.h"
 
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
+
+#include <Eigen/SVD>
 
 #include "solver_utils.h"
 #include "trigrav/initializers/essential_5pt.h"
@@ -207,6 +210,66 @@ const SolverInfo& Info(InitialSolver solver) {
   throw std::invalid_argument("trigrav: unknown InitialSolver value");
 }
 
+// Share of the inliers that a camera 2 without baseline explains within `threshold` pixels: the
+// rotation R maximising sum_n x2_n . R x1_n over the inliers' rays (Wahba's problem, solved by the
+// SVD of sum_n x2_n x1_n^T; rays K^-1 [u v 1]^T weighted by their lengths), each inlier counted if
+// the direction R x1_n lands within the threshold of its pixel in view 2.
+double ShareExplainedByRotation(const ThreeViewObservations& observations, const TripletData& data,
+                                const std::vector<char>& inliers, double threshold) {
+  Eigen::Matrix3d correlation = Eigen::Matrix3d::Zero();
+  int num_inliers = 0;
+  for (std::size_t n = 0; n < inliers.size(); ++n) {
+    if (!inliers[n]) continue;
+    correlation += data.raw[1][n] * data.raw[0][n].transpose();
+    ++num_inliers;
+  }
+  if (num_inliers == 0) return 0.0;
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(correlation,
+                                              Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d R = svd.matrixU() * svd.matrixV().transpose();
+  if (R.determinant() < 0.0) {
+    R = svd.matrixU() * Eigen::Vector3d(1.0, 1.0, -1.0).asDiagonal() * svd.matrixV().transpose();
+  }
+  const PinholeCamera& camera = observations.cameras[1];
+  int explained = 0;
+  for (std::size_t n = 0; n < inliers.size(); ++n) {
+    if (!inliers[n]) continue;
+    const Eigen::Vector3d direction = R * data.raw[0][n];
+    if (!(direction.z() > 0.0)) continue;
+    const Eigen::Vector2d pixel(camera.fx * direction.x() / direction.z() + camera.cx,
+                                camera.fy * direction.y() / direction.z() + camera.cy);
+    explained += (pixel - observations.pixels[1][n]).norm() <= threshold;
+  }
+  return static_cast<double>(explained) / num_inliers;
+}
+
+// Like COLMAP's two-view classification, which calls a pair planar or panoramic when a homography
+// explains more than 80 % of the inliers of the essential matrix (max_H_inlier_ratio = 0.8).
+constexpr double kMaxShareExplainedByRotation = 0.8;
+
+template <typename M>
+RobustThreeViewEstimate RunWithParallaxCheck(const ThreeViewObservations& observations,
+                                             const TripletData& data,
+                                             const RansacOptions& options) {
+  RobustThreeViewEstimate estimate = Run<M>(data, options);
+  if (!estimate.success) return estimate;
+  const double share =
+      ShareExplainedByRotation(observations, data, estimate.inliers, options.max_error);
+  if (share > kMaxShareExplainedByRotation) {
+    RobustThreeViewEstimate failure;
+    failure.message = "no parallax between views 1 and 2: a rotation of camera 2 without baseline "
+                      "explains " + std::to_string(static_cast<int>(std::round(100.0 * share))) +
+                      " % of the " + std::to_string(estimate.num_inliers) +
+                      " inliers, so camera 2's centre (the scale |C2| = 1) is not observable (zero "
+                      "baseline, pure rotation, points at infinity)";
+    failure.iterations = estimate.iterations;
+    failure.num_models_scored = estimate.num_models_scored;
+    failure.num_local_optimizations = estimate.num_local_optimizations;
+    return failure;
+  }
+  return estimate;
+}
+
 }  // namespace
 
 const char* InitialSolverName(InitialSolver solver) { return Info(solver).name; }
@@ -230,17 +293,17 @@ RobustThreeViewEstimate EstimateThreeViewPoseRobust(const ThreeViewObservations&
   const TripletData data(observations);
   switch (options.solver) {
     case InitialSolver::kTrifocal3pt:
-      return Run<Method3pt>(data, options.ransac);
+      return RunWithParallaxCheck<Method3pt>(observations, data, options.ransac);
     case InitialSolver::kTrifocal3ptSextic:
-      return Run<Method3ptSextic>(data, options.ransac);
+      return RunWithParallaxCheck<Method3ptSextic>(observations, data, options.ransac);
     case InitialSolver::kTrifocal4pt:
-      return Run<Method4pt>(data, options.ransac);
+      return RunWithParallaxCheck<Method4pt>(observations, data, options.ransac);
     case InitialSolver::kTrifocalLinear:
-      return Run<Method7ptLinear>(data, options.ransac);
+      return RunWithParallaxCheck<Method7ptLinear>(observations, data, options.ransac);
     case InitialSolver::kEssential5pt:
-      return Run<Method5pt>(data, options.ransac);
+      return RunWithParallaxCheck<Method5pt>(observations, data, options.ransac);
     case InitialSolver::kEssential8pt:
-      return Run<Method8pt>(data, options.ransac);
+      return RunWithParallaxCheck<Method8pt>(observations, data, options.ransac);
   }
   throw std::invalid_argument("trigrav: EstimateThreeViewPoseRobust: unknown solver");
 }

@@ -13,7 +13,9 @@ void CheckRays(const char* solver, const char* name, const std::vector<Eigen::Ve
     if (!rays[n].allFinite() || !(norm > 0.0) || !std::isfinite(norm)) {
       std::ostringstream message;
       message << "trigrav: " << solver << ": " << name << "[" << n << "] is "
-              << (rays[n].allFinite() ? "a zero-length ray" : "not finite");
+              << (!rays[n].allFinite() ? "not finite"
+                  : norm > 0.0         ? "too long (its squared length overflows)"
+                                       : "a zero-length ray");
       throw std::invalid_argument(message.str());
     }
   }
@@ -67,8 +69,19 @@ void CheckGravity(const char* solver, const char* name, const Eigen::Vector3d& g
   if (!gravity.allFinite() || !(norm > 0.0) || !std::isfinite(norm)) {
     std::ostringstream message;
     message << "trigrav: " << solver << ": " << name << " is "
-            << (gravity.allFinite() ? "zero" : "not finite");
+            << (!gravity.allFinite() ? "not finite"
+                : norm > 0.0         ? "too long (its squared length overflows)"
+                                     : "zero");
     throw std::invalid_argument(message.str());
+  }
+}
+
+void CheckPoses(const char* solver, const char* name, const std::vector<CameraPose>& poses) {
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    if (!poses[i].IsFinite()) {
+      throw std::invalid_argument(std::string("trigrav: ") + solver + ": " + name + "[" +
+                                  std::to_string(i) + "] is not finite");
+    }
   }
 }
 

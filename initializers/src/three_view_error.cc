@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 
 namespace trigrav {
@@ -9,6 +10,9 @@ namespace trigrav {
 bool TriangulateMidpoint(const std::array<Eigen::Vector3d, 3>& centers_in_ref,
                          const std::array<Eigen::Vector3d, 3>& directions_in_ref,
                          Eigen::Vector3d* point_in_ref) {
+  if (point_in_ref == nullptr) {
+    throw std::invalid_argument("trigrav: TriangulateMidpoint: point_in_ref is null");
+  }
   // A = sum_k (I - d_k d_k^T) = 3 I - sum_k d_k d_k^T for unit d_k, b = sum_k (c_k - d_k (d_k . c_k));
   // only the 6 distinct entries of the symmetric A are accumulated.
   double a00 = 0.0, a01 = 0.0, a02 = 0.0, a11 = 0.0, a12 = 0.0, a22 = 0.0;
@@ -16,6 +20,7 @@ bool TriangulateMidpoint(const std::array<Eigen::Vector3d, 3>& centers_in_ref,
   for (int k = 0; k < 3; ++k) {
     const Eigen::Vector3d& d = directions_in_ref[k];
     const double squared = d.squaredNorm();
+    if (!(squared > 0.0) || !std::isfinite(squared)) return false;  // zero, overflowing or NaN
     const Eigen::Vector3d u = d / squared;  // (I - d d^T / |d|^2) also accepts non-unit directions
     a00 += 1.0 - u[0] * d[0];
     a01 -= u[0] * d[1];
@@ -37,15 +42,18 @@ bool TriangulateMidpoint(const std::array<Eigen::Vector3d, 3>& centers_in_ref,
   const double c11 = A(0, 0) * A(2, 2) - A(0, 2) * A(0, 2);
   const double c12 = A(0, 1) * A(0, 2) - A(0, 0) * A(1, 2);
   const double c22 = A(0, 0) * A(1, 1) - A(0, 1) * A(0, 1);
-  *point_in_ref = Eigen::Vector3d(c00 * b[0] + c01 * b[1] + c02 * b[2],
-                                  c01 * b[0] + c11 * b[1] + c12 * b[2],
-                                  c02 * b[0] + c12 * b[1] + c22 * b[2]) /
-                  determinant;
-  return point_in_ref->allFinite();
+  const Eigen::Vector3d point = Eigen::Vector3d(c00 * b[0] + c01 * b[1] + c02 * b[2],
+                                                c01 * b[0] + c11 * b[1] + c12 * b[2],
+                                                c02 * b[0] + c12 * b[1] + c22 * b[2]) /
+                                determinant;
+  if (!point.allFinite()) return false;
+  *point_in_ref = point;
+  return true;
 }
 
 ThreeViewReprojectionError::ThreeViewReprojectionError(const ThreeViewObservations& observations)
     : cameras_(observations.cameras), pixels_(observations.pixels) {
+  observations.Check();
   for (int k = 0; k < 3; ++k) {
     unit_rays_[k].reserve(pixels_[k].size());
     for (const Eigen::Vector2d& pixel : pixels_[k]) {

@@ -21,8 +21,11 @@ void ThreeViewObservations::Check() const {
            " needs positive, finite focal lengths and a finite principal point");
     }
     const double g = gravity_in_cam[k].norm();
-    if (!gravity_in_cam[k].allFinite() || !(g > 0.0)) {
-      fail("gravity_in_cam[" + std::to_string(k) + "] is zero or not finite");
+    if (!gravity_in_cam[k].allFinite() || !(g > 0.0) || !std::isfinite(g)) {
+      fail("gravity_in_cam[" + std::to_string(k) + "] is " +
+           (!gravity_in_cam[k].allFinite() ? "not finite"
+            : g > 0.0                      ? "too long (its squared length overflows)"
+                                           : "zero"));
     }
     if (pixels[k].size() != pixels[0].size()) {
       std::ostringstream message;
@@ -33,6 +36,12 @@ void ThreeViewObservations::Check() const {
     for (std::size_t n = 0; n < pixels[k].size(); ++n) {
       if (!pixels[k][n].allFinite()) {
         fail("pixels[" + std::to_string(k) + "][" + std::to_string(n) + "] is not finite");
+      }
+      // A finite pixel far from the principal point, or a focal length near the smallest double,
+      // overflows the ray K^-1 [u v 1]^T or its squared length (found by tests/fuzz).
+      if (!std::isfinite(cameras[k].Ray(pixels[k][n]).squaredNorm())) {
+        fail("pixels[" + std::to_string(k) + "][" + std::to_string(n) +
+             "] is too far from the principal point for the focal length (its ray overflows)");
       }
     }
   }

@@ -137,6 +137,9 @@ struct TrigQuadratic {
   }
 };
 
+// Real roots of the pair (1, k) that pass cheirality. Returns 0 when det[m_1; m_2; m_3] vanishes
+// for every yaw (two of the three triplets coincide, or all three points coincide): the pair then
+// has a continuum of solutions, not a few.
 int SolveUprightPair(const Rays& x1, const Rays& xk, std::array<PairRoot, 4>* roots) {
   std::array<Eigen::Vector3d, 3> P, Q, S;
   std::array<TrigLinear, 3> rotated1 = {TrigLinear(x1[0]), TrigLinear(x1[1]), TrigLinear(x1[2])};
@@ -151,10 +154,12 @@ int SolveUprightPair(const Rays& x1, const Rays& xk, std::array<PairRoot, 4>* ro
   static constexpr double kS[5] = {0.0, 0.95105651629515357, 0.58778525229247313,
                                    -0.58778525229247313, -0.95105651629515357};
   TrigQuadratic D;
+  double squared_hadamard_bound = 0.0;  // prod_n |m_n|^2 at theta = 0, >= det^2 there
   for (int j = 0; j < 5; ++j) {
     const Eigen::Vector3d m0 = kC[j] * P[0] + kS[j] * Q[0] + S[0];
     const Eigen::Vector3d m1 = kC[j] * P[1] + kS[j] * Q[1] + S[1];
     const Eigen::Vector3d m2 = kC[j] * P[2] + kS[j] * Q[2] + S[2];
+    if (j == 0) squared_hadamard_bound = m0.squaredNorm() * m1.squaredNorm() * m2.squaredNorm();
     const double value = m0.dot(m1.cross(m2));
     const int j2 = (2 * j) % 5;  // 2 theta_j = theta_{2j mod 5}
     D.a0 += value;
@@ -169,7 +174,14 @@ int SolveUprightPair(const Rays& x1, const Rays& xk, std::array<PairRoot, 4>* ro
   D.a2 *= 0.4;
   D.b2 *= 0.4;
   const double scale = D.Scale();
-  if (!(scale > 0.0) || !std::isfinite(scale)) return 0;
+  // The determinant vanishes identically (rounding leaves about 1e-16 of the Hadamard bound) when
+  // two triplets coincide.
+  constexpr double kMinRelativeDeterminant = 1e-10;
+  if (!(scale * scale >
+        kMinRelativeDeterminant * kMinRelativeDeterminant * squared_hadamard_bound) ||
+      !std::isfinite(scale)) {
+    return 0;
+  }
 
   const Offset& offset =
       ChooseOffset(scale, [&D](const Offset& theta0) { return D.AtOffsetPlusPi(theta0); });
@@ -431,6 +443,9 @@ int SolveTrifocal3pt(const Rays& x1, const Rays& x2, const Rays& x3,
                      std::vector<ThreeViewPose>* solutions) {
   internal::CheckTriplets("SolveTrifocal3pt", kNumTriplets, kNumTriplets, x1, x2, x3, solutions);
   solutions->clear();
+  // Camera 2 sets the scale |c_2| = 1, undefined without parallax in pair (1,2); camera 3 may
+  // have none (c_3 = 0 is a valid pose).
+  if (internal::PairExplainedByYaw(x1, x2)) return 0;
   return SolveDecoupledAligned(x1, x2, x3, solutions);
 }
 
@@ -453,6 +468,7 @@ int SolveTrifocal3ptSextic(const Rays& x1, const Rays& x2, const Rays& x3,
   internal::CheckTriplets("SolveTrifocal3ptSextic", kNumTriplets, kNumTriplets, x1, x2, x3,
                           solutions);
   solutions->clear();
+  if (internal::PairExplainedByYaw(x1, x2)) return 0;  // as in SolveTrifocal3pt
   return SolveSexticAligned(x1, x2, x3, solutions);
 }
 

@@ -3,6 +3,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include <Eigen/Cholesky>
 #include <Eigen/QR>
@@ -284,9 +286,22 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen
 
 }  // namespace
 
+void Trifocal4ptOptions::Check() const {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("trigrav: Trifocal4ptOptions: ") + what);
+  };
+  require(recovery == Trifocal4ptRecovery::kEnforced ||
+              recovery == Trifocal4ptRecovery::kLeastSquares ||
+              recovery == Trifocal4ptRecovery::kPaperClosedForm,
+          "unknown recovery");
+  require(epipole_iterations >= 0, "epipole_iterations must be >= 0");
+  require(polish_iterations >= 0, "polish_iterations must be >= 0");
+}
+
 int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
                      const std::vector<Eigen::Vector3d>& x3, const Trifocal4ptOptions& options,
                      std::vector<ThreeViewPose>* solutions) {
+  options.Check();
   internal::CheckTriplets("SolveTrifocal4pt", kMinTriplets, std::numeric_limits<std::size_t>::max(),
                           x1, x2, x3, solutions);
   solutions->clear();

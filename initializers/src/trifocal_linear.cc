@@ -217,8 +217,10 @@ int Solve(const std::vector<Eigen::Vector3d>& x1,
     A.template middleRows<4>(4 * n) = IncidenceRows(y1[n], y2[n], y3[n]);
   }
   if (!A.allFinite()) return 0;
-  const Vector27d t =
-      internal::SmallestRightSingularVectorOfTriangular<27>(internal::TriangularFactor(A));
+  const Eigen::Matrix<double, 27, 27> R_A = internal::TriangularFactor(A);
+  // A null space of dimension 2 or more (e.g. a repeated triplet among 7) leaves T undetermined.
+  if (internal::HasMultipleNullDirections<27>(R_A)) return 0;
+  const Vector27d t = internal::SmallestRightSingularVectorOfTriangular<27>(R_A);
   if (!t.allFinite() || t.isZero()) return 0;
   const TensorSlices T = DenormaliseTensor(t, H1, H2, H3);
 

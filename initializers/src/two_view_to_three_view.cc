@@ -1,8 +1,8 @@
 #include "trigrav/initializers/two_view_to_three_view.h"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "solver_utils.h"
@@ -15,7 +15,12 @@ void CombineTwoViewPairs(const std::vector<Eigen::Vector3d>& x1,
                          const std::vector<CameraPose>& pair12,
                          const std::vector<CameraPose>& pair13, std::vector<ThreeViewPose>* poses,
                          std::vector<double>* residuals) {
-  const std::size_t n_points = std::min({x1.size(), x2.size(), x3.size()});
+  constexpr const char* kName = "CombineTwoViewPairs";
+  if (poses == nullptr) throw std::invalid_argument("trigrav: CombineTwoViewPairs: poses is null");
+  internal::CheckTriplets(kName, 0, std::numeric_limits<std::size_t>::max(), x1, x2, x3, poses);
+  internal::CheckPoses(kName, "pair12", pair12);
+  internal::CheckPoses(kName, "pair13", pair13);
+  const std::size_t n_points = x1.size();
   for (const CameraPose& cam2 : pair12) {
     const Eigen::Vector3d center2 = cam2.Center();
     for (const CameraPose& cam3 : pair13) {

@@ -58,7 +58,8 @@ struct ThreeViewBundleAdjustmentOptions {
   double gradient_tolerance = 1e-10;
   double parameter_tolerance = 1e-10;
 
-  // Throws std::invalid_argument naming the first bad field.
+  // Throws std::invalid_argument naming the first bad field (non-positive or non-finite scales and
+  // sigmas, negative counts or tolerances, NaN tolerances, enum values out of range).
   void Check() const;
 };
 
@@ -81,8 +82,10 @@ struct ThreeViewBundleAdjustmentSummary {
 //   if (ba.Build(initial_pose)) summary = ba.Solve();
 class ThreeViewBundleAdjuster {
  public:
-  // Keeps a reference to `observations`, which must outlive the adjuster and pass Check().
-  // Throws std::invalid_argument for bad options or a triplet index out of range.
+  // Keeps a reference to `observations`, which must outlive the adjuster. Throws
+  // std::invalid_argument for observations that fail ThreeViewObservations::Check() (sizes differ,
+  // bad intrinsics, non-finite pixels, zero or non-finite gravity), bad options or a triplet index
+  // out of range.
   ThreeViewBundleAdjuster(const ThreeViewObservations& observations,
                           const ThreeViewBundleAdjustmentConfig& config,
                           const ThreeViewBundleAdjustmentOptions& options);

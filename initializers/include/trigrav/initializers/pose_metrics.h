@@ -34,6 +34,24 @@ struct ThreeViewPoseErrors {
 ThreeViewPoseErrors ComputeThreeViewPoseErrors(const ThreeViewPose& ground_truth,
                                                const ThreeViewPose& estimate);
 
+// A rotation error split into its part about the gravity axis (yaw) and the rest (tilt). With the
+// error rotation E = R_gt R^T, which acts in the camera's own frame, and g = gravity_in_cam of
+// that camera (ground truth, any positive length), the swing-twist decomposition E = S T has T a
+// rotation about g (the twist) and S a rotation about an axis perpendicular to g (the swing). From
+// the unit quaternion (w, v) of E, with v_g = v . g / |g| and v_perp = v - v_g g / |g|:
+//   yaw  = angle of T = 2 atan2(|v_g|, |w|),
+//   tilt = angle of S = 2 atan2(|v_perp|, sqrt(w^2 + v_g^2)) = angle between g and E g.
+// An upright method with exact gravity has tilt = 0. For small errors yaw^2 + tilt^2 ~ rotation^2.
+struct YawTiltErrorDeg {
+  double yaw_deg = 0.0;
+  double tilt_deg = 0.0;
+};
+
+// Throws std::invalid_argument if gravity_in_cam is zero or not finite.
+YawTiltErrorDeg SplitRotationErrorDeg(const Eigen::Matrix3d& R_gt,
+                                      const Eigen::Matrix3d& R,
+                                      const Eigen::Vector3d& gravity_in_cam);
+
 // Median of a sample of errors (the upper median for an even count); NaN for an empty sample.
 double Median(std::vector<double> values);
 

@@ -51,7 +51,11 @@ struct RobustThreeViewEstimate {
 // minimal solver, every method scored by the same three-view reprojection error in pixels
 // (three_view_error.h). Gravity is used by the gravity-aware methods only. Throws
 // std::invalid_argument for invalid observations or options; numerical failure (too few triplets,
-// no model) gives success == false with a message.
+// no model) gives success == false with a message. So do data without parallax between views 1
+// and 2: if a pure rotation of camera 2 (the best one for the winner's inliers, no baseline) puts
+// more than 80 % of those inliers within ransac.max_error pixels, camera 2's centre, which sets the
+// scale |C2| = 1, is not observable (zero baseline, pure rotation, points at infinity, identical
+// views); the threshold follows COLMAP's planar-or-panoramic test of two-view geometries.
 RobustThreeViewEstimate EstimateThreeViewPoseRobust(const ThreeViewObservations& observations,
                                                     const RobustThreeViewOptions& options);
 

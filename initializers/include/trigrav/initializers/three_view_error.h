@@ -14,7 +14,9 @@ namespace trigrav {
 // Multi-view midpoint: the point closest (least squares) to the rays from the centres c_k along the
 // directions d_k (any non-zero length), all in reference (camera 1) coordinates (math note section 7):
 //   X = (sum_k (I - d_k d_k^T))^-1 sum_k (I - d_k d_k^T) c_k.
-// Returns false (X untouched) if the rays are parallel (singular system).
+// Returns false (X untouched) if the rays are parallel (singular system), a direction is zero,
+// not finite or so long that its squared length overflows, or the point is not finite. Throws
+// std::invalid_argument if point_in_ref is null.
 bool TriangulateMidpoint(const std::array<Eigen::Vector3d, 3>& centers_in_ref,
                          const std::array<Eigen::Vector3d, 3>& directions_in_ref,
                          Eigen::Vector3d* point_in_ref);
@@ -26,7 +28,7 @@ bool TriangulateMidpoint(const std::array<Eigen::Vector3d, 3>& centers_in_ref,
 // along its epipolar line when the three centres are collinear (straight driving).
 class ThreeViewReprojectionError {
  public:
-  // Observations must pass ThreeViewObservations::Check().
+  // Throws std::invalid_argument if the observations fail ThreeViewObservations::Check().
   explicit ThreeViewReprojectionError(const ThreeViewObservations& observations);
 
   // A pose with what the error needs precomputed (rotations, centres).

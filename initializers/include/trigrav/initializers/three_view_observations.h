@@ -30,7 +30,7 @@ struct ThreeViewObservations {
 
   std::size_t size() const { return pixels[0].size(); }
   // Throws std::invalid_argument naming the problem: sizes differ, bad intrinsics, non-finite pixels,
-  // zero or non-finite gravity.
+  // pixels whose ray K^-1 [u v 1]^T overflows, zero or non-finite gravity.
   void Check() const;
 };
 

@@ -28,8 +28,11 @@ namespace trigrav {
 // coefficient below 1 % of the largest one and then use t = tan((theta - theta_0)/2) with another
 // offset theta_0 (pi/2 first), so that theta = pi and yaws near it are ordinary, accurate roots.
 //
-// Degenerate input (zero baseline in a view pair, points on a line through a camera centre,
-// identical views) gives 0 solutions or only the candidates that survive; never a non-finite pose.
+// Degenerate input gives 0 solutions or only the candidates that survive; never a non-finite pose.
+// Both solvers return 0 when one yaw maps all three rays of view 1 onto those of view 2 to within
+// 1e-4 rad (no parallax in pair (1,2): zero baseline of camera 2, identical views, points at
+// infinity), since |c_2| = 1 is then undefined; camera 3 may have none (c_3 = 0 is a valid pose).
+// The decoupled solver also returns 0 when two of the three triplets coincide.
 // Misuse throws std::invalid_argument: sizes differ, not exactly 3 triplets, non-finite numbers,
 // zero-length rays, null output (and, for the gravity overloads, zero or non-finite gravity).
 

@@ -55,6 +55,10 @@ struct Trifocal4ptOptions {
   // Gauss-Newton steps on the incidence residuals over yaws and centres jointly (step 6 above; about
   // 1.5 microseconds each). 0 gives the math note's recommended pipeline exactly.
   int polish_iterations = 1;
+
+  // Throws std::invalid_argument naming the first bad field: recovery not one of the enumerators,
+  // negative iteration counts. The solvers call it.
+  void Check() const;
 };
 
 // Rays already in gravity-aligned frames: camera y axis = gravity (down). N >= 4 triplets, more than 4
@@ -71,7 +75,8 @@ int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<E
                      const Eigen::Vector3d& gravity_in_cam2, const Eigen::Vector3d& gravity_in_cam3,
                      std::vector<ThreeViewPose>* solutions);
 
-// The same two entry points with explicit options (paper variants, no translation re-solve).
+// The same two entry points with explicit options (paper variants, no translation re-solve); they
+// also throw std::invalid_argument for options that fail Trifocal4ptOptions::Check().
 int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
                      const std::vector<Eigen::Vector3d>& x3, const Trifocal4ptOptions& options,
                      std::vector<ThreeViewPose>* solutions);

@@ -52,8 +52,9 @@ namespace trigrav {
 //      Scale |c_2| = 1, t_k = -R_k c_k.
 // Rays are K^-1 [u v 1]^T (any non-zero length and sign). At most one solution, scaled so that
 // |cam2_from_cam1.Center()| = 1; returns the number written. Degenerate input gives 0 solutions
-// (coincident points in a view, no cheirality-consistent pose) or, when the tensor is not defined
-// (zero baseline in both pairs: pure rotations), possibly a finite pose with meaningless
+// (coincident points in a view, a repeated triplet or any other input whose 4N x 27 system has a
+// null space of dimension 2 or more, no cheirality-consistent pose) or, when the tensor is not
+// defined (zero baseline in both pairs: pure rotations), possibly a finite pose with meaningless
 // translations; never a non-finite pose. Throws std::invalid_argument on misuse: sizes differ,
 // fewer than 7 triplets, non-finite numbers, zero-length rays, null output.
 int SolveTrifocalLinear(const std::vector<Eigen::Vector3d>& x1,

@@ -19,7 +19,9 @@ namespace trigrav {
 // x1, x2, x3: the rays of the triplets (the same ones the pair solutions came from, or more).
 // Appends to *poses (not cleared). If residuals is not null, appends for each pose the depth-ratio
 // residual |l2 - kappa l3| / |l2| (about 1e-15 for the true combination without noise), so that a
-// caller can rank the combinations without ground truth.
+// caller can rank the combinations without ground truth. Without triplets there is no depth, so
+// nothing is appended. Throws std::invalid_argument on misuse: x1, x2, x3 differ in size,
+// non-finite numbers or zero-length rays, a non-finite pair pose, poses null.
 void CombineTwoViewPairs(const std::vector<Eigen::Vector3d>& x1,
                          const std::vector<Eigen::Vector3d>& x2,
                          const std::vector<Eigen::Vector3d>& x3,

@@ -1,0 +1,90 @@
+#ifndef TRIGRAV_EXAMPLES_PEERS_PEER_ESTIMATORS_H_
+#define TRIGRAV_EXAMPLES_PEERS_PEER_ESTIMATORS_H_
+
+// trigrav side by side with the libraries a user with gravity would otherwise call: OpenCV's and
+// OpenGV's five-point RANSAC on the view pairs (1,2) and (1,3). Every estimator has one shape, so
+// that an evaluation (examples/peer_comparison.cc, a KITTI tool) runs them all alike: pixels and
+// intrinsics in, one three-view pose out. The peers are optional at build time; this header and the
+// trigrav entries do not depend on them.
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "trigrav/initializers/camera_pose.h"
+#include "trigrav/initializers/three_view_observations.h"
+
+namespace trigrav::peers {
+
+// What every estimator returns.
+struct EstimatorResult {
+  bool success = false;
+  std::string message;  // why not, when !success; a note when the relative scale is unknown
+  ThreeViewPose pose;   // original camera frames, |cam2_from_cam1.Center()| = 1
+  // False when a pairwise estimate could not fix the relative scale (camera 3 at |centre| = 1).
+  bool relative_scale_known = true;
+  // Triplets the estimate calls inliers (for a pairwise peer: inliers of both pairs).
+  int num_inliers = 0;
+  double time_s = 0.0;  // wall time of the whole estimate, measured around the call
+};
+
+// Robust three-view estimate from pixel triplets with outliers. threshold_px is the inlier
+// threshold in pixels; each entry states in `description` what the threshold means for it.
+using Estimator =
+    std::function<EstimatorResult(const ThreeViewObservations& observations, double threshold_px)>;
+
+struct NamedEstimator {
+  std::string name;         // short, for table rows: "trigrav-3pt", "opencv-ransac", ...
+  std::string description;  // API, method, threshold meaning, iterations and confidence
+  Estimator estimate;
+};
+
+// trigrav's RANSAC estimates (EstimateThreeViewPoseRobust, default RansacOptions apart from the
+// threshold): trigrav-3pt, trigrav-4pt, trigrav-5pt.
+std::vector<NamedEstimator> TrigravRobustEstimators();
+// The same three, each refined by InitializeAndRefine (yaw-only bundle adjustment):
+// trigrav-3pt+ba, trigrav-4pt+ba, trigrav-5pt+ba.
+std::vector<NamedEstimator> TrigravRefinedEstimators();
+// The peers found at build time (empty if none): opencv-ransac, opencv-usac-magsac,
+// opencv-usac-default, opengv-ransac-stewenius, opengv-ransac-nister, opengv-ransac-nister+nl.
+std::vector<NamedEstimator> PeerEstimators();
+
+// Keeps every peer on the calling thread (OpenCV's thread pool off), so that per-call times are
+// single-threaded and callers can run estimates on several threads of their own.
+void RunPeersSingleThreaded();
+
+// A noise-free problem for the minimal solvers: at least 5 triplets of rays K^-1 [u v 1]^T in the
+// original camera frames, each camera's gravity and the true pose.
+struct MinimalProblem {
+  std::vector<Eigen::Vector3d> x1, x2, x3;
+  Eigen::Vector3d gravity_in_cam1, gravity_in_cam2, gravity_in_cam3;
+  ThreeViewPose ground_truth;
+};
+
+// A minimal solver prepared for a list of problems: solve(i) runs one call on problem i and returns
+// the number of solutions; truth_found(i) runs it again and says whether the true pose is among
+// them (1e-6 deg; for essential matrices, E within 1e-8 of the true one up to sign and scale).
+struct PreparedMinimalSolver {
+  std::function<int(std::size_t)> solve;
+  std::function<bool(std::size_t)> truth_found;
+};
+
+struct NamedMinimalSolver {
+  std::string name;
+  std::string description;  // what one call computes
+  // Converts the problems to the solver's input once (outside any timing loop). The problems must
+  // outlive the returned functions.
+  std::function<PreparedMinimalSolver(const std::vector<MinimalProblem>&)> prepare;
+};
+
+// trigrav's SolveTrifocal3pt, SolveTrifocal4pt (with each camera's gravity, as a pipeline calls
+// them) and SolveEssential5pt on pair (1,2).
+std::vector<NamedMinimalSolver> TrigravMinimalSolvers();
+// OpenGV's fivept_stewenius and fivept_nister on pair (1,2), if OpenGV was found. OpenCV has no
+// public minimal-solver call, so it has no entry.
+std::vector<NamedMinimalSolver> PeerMinimalSolvers();
+
+}  // namespace trigrav::peers
+
+#endif  // TRIGRAV_EXAMPLES_PEERS_PEER_ESTIMATORS_H_

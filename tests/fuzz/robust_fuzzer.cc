@@ -1,0 +1,131 @@
+// Fuzz harness over the robust estimator EstimateThreeViewPoseRobust (robust_three_view.h), every
+// InitialSolver, with bounded RANSAC iterations (at most 64) and at most 40 triplets so one input
+// runs in milliseconds.
+//
+// Input: the solver (one value in 8 is not a valid enumerator), the RANSAC options (mostly sane,
+// some decoded freely), then either a synthetic scene with outliers and edits (fuzz_scene.h) or raw
+// intrinsics, gravity and pixels, then edits of the intrinsics. Checked:
+//   - the only exception is std::invalid_argument, and only when the observations or the options
+//     fail their own Check() or the solver is not an enumerator;
+//   - success: a finite pose, one inlier flag per triplet, num_inliers = the flags set (at least a
+//     minimal sample), iterations <= max_iterations; failure: a message.
+// Built as a libFuzzer target with Clang, and into a replay driver (replay_main.cc) for ctest.
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <initializer_list>
+#include <stdexcept>
+
+#include "fuzz_check.h"
+#include "fuzz_input.h"
+#include "fuzz_scene.h"
+#include "trigrav/initializers/robust_three_view.h"
+#include "trigrav/initializers/three_view_observations.h"
+
+namespace trigrav {
+namespace fuzz {
+namespace {
+
+constexpr int kNumSolvers = 6;
+constexpr int kMaxIterations = 64;
+constexpr int kMaxTriplets = 40;
+
+// One of the listed values, or (the last choice) any decoded double.
+double Choose(FuzzInput* input, std::initializer_list<double> values) {
+  const int which = input->Index(static_cast<int>(values.size()) + 1);
+  return which < static_cast<int>(values.size()) ? values.begin()[which] : input->Double();
+}
+
+RobustThreeViewOptions DecodeOptions(FuzzInput* input) {
+  RobustThreeViewOptions options;
+  options.solver = static_cast<InitialSolver>(input->Index(kNumSolvers + 2));
+  RansacOptions& ransac = options.ransac;
+  ransac.max_error = Choose(input, {0.5, 2.0, 20.0, 1e6});
+  ransac.confidence = Choose(input, {0.99, 0.9999});
+  ransac.min_iterations = input->Index(24) - 2;
+  ransac.max_iterations = input->Index(kMaxIterations + 2) - 1;
+  ransac.seed = input->Uint32();
+  ransac.local_optimization = input->Byte() % 4 != 0;
+  ransac.local_optimization_rounds = input->Index(6) - 1;
+  ransac.local_optimization_threshold_multiplier = Choose(input, {1.0, 3.0});
+  return options;
+}
+
+ThreeViewObservations DecodeObservations(FuzzInput* input) {
+  ThreeViewObservations observations;
+  if (input->Byte() % 2 == 0) {
+    if (auto scene = DecodeSyntheticScene(input, 1, kMaxTriplets)) {
+      observations = ToObservations(*scene);
+    }
+  } else {
+    for (PinholeCamera& camera : observations.cameras) {
+      camera = {input->Double(), input->Double(), input->Double(), input->Double()};
+    }
+    for (Eigen::Vector3d& gravity : observations.gravity_in_cam) gravity = input->Vector3();
+    const int size = input->Index(kMaxTriplets + 1);
+    for (auto& view : observations.pixels) {
+      view.resize(size);
+      for (Eigen::Vector2d& pixel : view) pixel = {input->Double(), input->Double()};
+    }
+  }
+  ApplyEdits<2>(input, &observations.pixels, &observations.gravity_in_cam);
+  for (int edit = input->Index(3); edit > 0; --edit) {
+    PinholeCamera& camera = observations.cameras[input->Index(3)];
+    double* const fields[] = {&camera.fx, &camera.fy, &camera.cx, &camera.cy};
+    *fields[input->Index(4)] = input->Double();
+  }
+  // Edits may add triplets; the harness stays small.
+  for (auto& view : observations.pixels) {
+    view.resize(std::min<std::size_t>(view.size(), kMaxTriplets));
+  }
+  return observations;
+}
+
+bool IsValid(const ThreeViewObservations& observations, const RobustThreeViewOptions& options) {
+  if (static_cast<int>(options.solver) >= kNumSolvers) return false;
+  try {
+    observations.Check();
+    options.ransac.Check();
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+}  // namespace fuzz
+}  // namespace trigrav
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace trigrav;  // NOLINT: the harness entry point must stay outside namespaces
+  fuzz::FuzzInput input(data, size);
+  const RobustThreeViewOptions options = fuzz::DecodeOptions(&input);
+  const ThreeViewObservations observations = fuzz::DecodeObservations(&input);
+  const bool valid = fuzz::IsValid(observations, options);
+  RobustThreeViewEstimate estimate;
+  try {
+    estimate = EstimateThreeViewPoseRobust(observations, options);
+  } catch (const std::invalid_argument& error) {
+    if (valid) std::fprintf(stderr, "thrown: %s\n", error.what());
+    TRIGRAV_FUZZ_CHECK(!valid,
+                       "std::invalid_argument for observations and options that pass Check()");
+    return 0;
+  }
+  TRIGRAV_FUZZ_CHECK(valid, "invalid observations or options were accepted");
+  if (!estimate.success) {
+    TRIGRAV_FUZZ_CHECK(!estimate.message.empty(), "a failure without a message");
+    return 0;
+  }
+  TRIGRAV_FUZZ_CHECK(estimate.pose.IsFinite(), "non-finite pose");
+  TRIGRAV_FUZZ_CHECK(estimate.inliers.size() == observations.size(), "one inlier flag per triplet");
+  TRIGRAV_FUZZ_CHECK(
+      estimate.num_inliers == std::count_if(estimate.inliers.begin(), estimate.inliers.end(),
+                                            [](char flag) { return flag != 0; }),
+      "num_inliers differs from the flags set");
+  TRIGRAV_FUZZ_CHECK(estimate.num_inliers >= MinimalSampleSize(options.solver),
+                     "fewer inliers than a minimal sample");
+  TRIGRAV_FUZZ_CHECK(estimate.iterations <= options.ransac.max_iterations, "too many iterations");
+  return 0;
+}

@@ -1,0 +1,119 @@
+#include "descriptor_matching.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace trigrav::kitti {
+namespace {
+
+constexpr int kDescriptorSize = 128;
+constexpr float kCellPx = 32.0f;
+
+// Squared Euclidean distance of two 128-byte SIFT descriptors (vectorised by the compiler).
+inline int SquaredDistance(const std::uint8_t* a, const std::uint8_t* b) {
+  int sum = 0;
+  for (int i = 0; i < kDescriptorSize; ++i) {
+    const int d = static_cast<int>(a[i]) - static_cast<int>(b[i]);
+    sum += d * d;
+  }
+  return sum;
+}
+
+// The two smallest distances seen so far and the index of the smallest.
+struct BestTwo {
+  int best = std::numeric_limits<int>::max();
+  int second = std::numeric_limits<int>::max();
+  int index = -1;
+
+  void Offer(int distance, int i) {
+    if (distance < best) {
+      second = best;
+      best = distance;
+      index = i;
+    } else if (distance < second) {
+      second = distance;
+    }
+  }
+  // best < ratio * second on distances, i.e. best^2 < ratio^2 second^2 on squared ones.
+  bool PassesRatio(double squared_ratio) const {
+    return index >= 0 && (second == std::numeric_limits<int>::max() ||
+                          static_cast<double>(best) < squared_ratio * second);
+  }
+};
+
+// Features of a frame bucketed into square cells, for window queries.
+class CellGrid {
+ public:
+  explicit CellGrid(const FrameFeatures& features) {
+    for (const Eigen::Vector2f& p : features.pixels) {
+      columns_ = std::max(columns_, Cell(p.x()) + 1);
+      rows_ = std::max(rows_, Cell(p.y()) + 1);
+    }
+    start_.assign(static_cast<std::size_t>(rows_) * columns_ + 1, 0);
+    for (const Eigen::Vector2f& p : features.pixels) ++start_[Index(p) + 1];
+    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    members_.resize(features.pixels.size());
+    std::vector<int> fill(start_.begin(), start_.end() - 1);
+    for (int i = 0; i < features.size(); ++i) members_[fill[Index(features.pixels[i])]++] = i;
+  }
+
+  // Calls visit(j) for every feature j in the cells overlapping [x0, x1] x [y0, y1].
+  template <typename Visit>
+  void ForEachInBox(float x0, float x1, float y0, float y1, Visit visit) const {
+    const int c0 = std::max(0, Cell(x0)), c1 = std::min(columns_ - 1, Cell(x1));
+    const int r0 = std::max(0, Cell(y0)), r1 = std::min(rows_ - 1, Cell(y1));
+    for (int r = r0; r <= r1; ++r) {
+      for (int c = c0; c <= c1; ++c) {
+        const std::size_t cell = static_cast<std::size_t>(r) * columns_ + c;
+        for (int k = start_[cell]; k < start_[cell + 1]; ++k) visit(members_[k]);
+      }
+    }
+  }
+
+ private:
+  static int Cell(float coordinate) {
+    return static_cast<int>(std::floor(std::max(coordinate, 0.0f) / kCellPx));
+  }
+  std::size_t Index(const Eigen::Vector2f& p) const {
+    return static_cast<std::size_t>(Cell(p.y())) * columns_ + Cell(p.x());
+  }
+
+  int columns_ = 0, rows_ = 0;
+  std::vector<int> start_;    // members_ of cell c: [start_[c], start_[c + 1])
+  std::vector<int> members_;  // feature indices sorted by cell
+};
+
+}  // namespace
+
+std::vector<int> MatchFeatures(const FrameFeatures& a,
+                               const FrameFeatures& b,
+                               const MatchOptions& options) {
+  std::vector<BestTwo> best_in_b(a.size()), best_in_a(b.size());
+  const CellGrid grid(b);
+  const float wx = static_cast<float>(options.window_x_px);
+  const float wy = static_cast<float>(options.window_y_px);
+  for (int i = 0; i < a.size(); ++i) {
+    const Eigen::Vector2f& p = a.pixels[i];
+    const std::uint8_t* descriptor = a.descriptors.ptr<std::uint8_t>(i);
+    grid.ForEachInBox(p.x() - wx, p.x() + wx, p.y() - wy, p.y() + wy, [&](int j) {
+      const Eigen::Vector2f d = b.pixels[j] - p;
+      if (std::abs(d.x()) > wx || std::abs(d.y()) > wy) return;
+      const int distance = SquaredDistance(descriptor, b.descriptors.ptr<std::uint8_t>(j));
+      best_in_b[i].Offer(distance, j);
+      best_in_a[j].Offer(distance, i);
+    });
+  }
+  const double squared_ratio = options.ratio * options.ratio;
+  std::vector<int> b_index_of_a(a.size(), -1);
+  for (int i = 0; i < a.size(); ++i) {
+    const BestTwo& forward = best_in_b[i];
+    if (!forward.PassesRatio(squared_ratio)) continue;
+    if (options.mutual && best_in_a[forward.index].index != i) continue;
+    b_index_of_a[i] = forward.index;
+  }
+  return b_index_of_a;
+}
+
+}  // namespace trigrav::kitti

@@ -122,3 +122,36 @@ trigrav_add_bad_flag_test(paper_experiments_uncreatable_output_dir paper_experim
   --output_dir=/nonexistent_trigrav_dir/paper)
 trigrav_add_bad_flag_test(paper_experiments_output_dir_is_a_file paper_experiments
   "cannot create or write --output_dir=/dev/null" --output_dir=/dev/null)
+
+# kitti_triplets (built when OpenCV is found). Flags are checked before any file is read, so an
+# existing folder (tests/) stands in for the dataset; the output goes to the build tree.
+set(kitti_ok --kitti_dir=${CMAKE_CURRENT_SOURCE_DIR} --output_dir=${CMAKE_CURRENT_BINARY_DIR}/kitti_bad_flags)
+trigrav_add_bad_flag_test(kitti_triplets_no_kitti_dir kitti_triplets
+  "--kitti_dir is required" --output_dir=${CMAKE_CURRENT_BINARY_DIR}/kitti_bad_flags)
+trigrav_add_bad_flag_test(kitti_triplets_missing_kitti_dir kitti_triplets
+  "--kitti_dir: no folder /nonexistent_trigrav_kitti" --kitti_dir=/nonexistent_trigrav_kitti
+  --output_dir=${CMAKE_CURRENT_BINARY_DIR}/kitti_bad_flags)
+trigrav_add_bad_flag_test(kitti_triplets_bad_sequence kitti_triplets
+  "--sequence must be two digits" ${kitti_ok} --sequence=0x)
+trigrav_add_bad_flag_test(kitti_triplets_short_range kitti_triplets
+  "--last_frame must be at least --first_frame \\+ 2" ${kitti_ok} --first_frame=5 --last_frame=6)
+trigrav_add_bad_flag_test(kitti_triplets_negative_first_frame kitti_triplets
+  "--first_frame must be >= 0" ${kitti_ok} --first_frame=-1)
+trigrav_add_bad_flag_test(kitti_triplets_no_output_dir kitti_triplets
+  "--output_dir is required" --kitti_dir=${CMAKE_CURRENT_SOURCE_DIR})
+trigrav_add_bad_flag_test(kitti_triplets_cache_inside_dataset kitti_triplets
+  "--cache_dir \\(.*\\) must not be inside the dataset" ${kitti_ok} --cache_dir=${CMAKE_CURRENT_SOURCE_DIR}/cache)
+trigrav_add_bad_flag_test(kitti_triplets_nan_threshold kitti_triplets
+  "--threshold_px must be positive and finite" ${kitti_ok} --threshold_px=nan)
+trigrav_add_bad_flag_test(kitti_triplets_zero_threshold kitti_triplets
+  "--threshold_px must be positive and finite" ${kitti_ok} --threshold_px=0)
+trigrav_add_bad_flag_test(kitti_triplets_confidence_one kitti_triplets
+  "--confidence must be in \\(0, 1\\)" ${kitti_ok} --confidence=1)
+trigrav_add_bad_flag_test(kitti_triplets_negative_imu_noise kitti_triplets
+  "--imu_noise_deg must be >= 0 and finite" ${kitti_ok} --imu_noise_deg=-0.1)
+trigrav_add_bad_flag_test(kitti_triplets_infinite_imu_noise kitti_triplets
+  "--imu_noise_deg must be >= 0 and finite" ${kitti_ok} --imu_noise_deg=inf)
+trigrav_add_bad_flag_test(kitti_triplets_ratio_above_one kitti_triplets
+  "--ratio must be in \\(0, 1\\]" ${kitti_ok} --ratio=1.5)
+trigrav_add_bad_flag_test(kitti_triplets_zero_threads kitti_triplets
+  "--threads must be in 1..256" ${kitti_ok} --threads=0)

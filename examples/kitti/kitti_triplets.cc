@@ -32,6 +32,9 @@
 #include "../require_flag.h"
 #include "descriptor_matching.h"
 #include "kitti_methods.h"
+#ifdef TRIGRAV_KITTI_WITH_PEERS
+#include "peer_methods.h"
+#endif
 #include "kitti_report.h"
 #include "kitti_sequence.h"
 #include "sift_features.h"
@@ -86,6 +89,8 @@ DEFINE_double(window_x_px, 250.0, "Matching search window: largest |dx| between 
 DEFINE_double(window_y_px, 120.0, "Matching search window: largest |dy| between frames (px).");
 DEFINE_uint64(seed, 1, "Seed of the IMU noise and of RANSAC (triplet f uses seed + f).");
 DEFINE_int32(threads, 2, "Worker threads.");
+DEFINE_bool(peers, false,
+            "Also run the OpenCV / OpenGV five-point peers (examples/peers/), if built with them.");
 
 namespace {
 
@@ -201,9 +206,9 @@ int main(int argc, char** argv) {
 
   kitti::KittiSequence sequence;
   std::string error;
-  RequireFlag(kitti::LoadKittiSequence(FLAGS_kitti_dir, FLAGS_sequence, FLAGS_first_frame,
-                                       FLAGS_last_frame, &sequence, &error),
-              error);
+  const bool loaded = kitti::LoadKittiSequence(FLAGS_kitti_dir, FLAGS_sequence, FLAGS_first_frame,
+                                               FLAGS_last_frame, &sequence, &error);
+  RequireFlag(loaded, error);
   const std::vector<std::string> method_names = SplitCommas(FLAGS_methods);
   RequireFlag(!method_names.empty(), "--methods is empty");
   kitti::TrigravMethodSettings settings;
@@ -212,12 +217,17 @@ int main(int argc, char** argv) {
   settings.ransac.min_iterations = FLAGS_min_iterations;
   settings.ransac.max_iterations = FLAGS_max_iterations;
   settings.ransac.local_optimization = FLAGS_local_optimization;
-  settings.refined_methods = FLAGS_refine == "all"    ? method_names
-                             : FLAGS_refine == "none" ? std::vector<std::string>()
-                                                      : SplitCommas(FLAGS_refine);
-  for (const std::string& name : settings.refined_methods) {
-    RequireFlag(std::find(method_names.begin(), method_names.end(), name) != method_names.end(),
-                "--refine: \"" + name + "\" is not in --methods");
+  // The default (3pt) is dropped quietly when 3pt is not among --methods; an explicit list must be.
+  const bool refine_is_default = gflags::GetCommandLineFlagInfoOrDie("refine").is_default;
+  const std::vector<std::string> refine = FLAGS_refine == "all"    ? method_names
+                                          : FLAGS_refine == "none" ? std::vector<std::string>()
+                                                                   : SplitCommas(FLAGS_refine);
+  for (const std::string& name : refine) {
+    if (std::find(method_names.begin(), method_names.end(), name) != method_names.end()) {
+      settings.refined_methods.push_back(name);
+    } else {
+      RequireFlag(refine_is_default, "--refine: \"" + name + "\" is not in --methods");
+    }
   }
   settings.bundle_adjustment.loss_scale_px = FLAGS_loss_px;
   settings.reclassification_rounds = FLAGS_reclassification_rounds;
@@ -225,13 +235,20 @@ int main(int argc, char** argv) {
   // agree to 0.001 deg and the refinement takes a quarter fewer iterations.
   settings.bundle_adjustment.function_tolerance = 1e-6;
   settings.bundle_adjustment.pixel_sigma_px = FLAGS_pixel_sigma_px;
-  settings.bundle_adjustment.gravity_sigma_deg = FLAGS_gravity_sigma_deg > 0.0
-                                                     ? FLAGS_gravity_sigma_deg
-                                                 : FLAGS_imu_noise_deg > 0.0 ? FLAGS_imu_noise_deg
-                                                                             : 0.03;
+  settings.bundle_adjustment.gravity_sigma_deg = 0.03;  // exact gravity (see the flag)
+  if (FLAGS_gravity_sigma_deg > 0.0) {
+    settings.bundle_adjustment.gravity_sigma_deg = FLAGS_gravity_sigma_deg;
+  } else if (FLAGS_imu_noise_deg > 0.0) {
+    settings.bundle_adjustment.gravity_sigma_deg = FLAGS_imu_noise_deg;
+  }
   std::vector<kitti::Method> methods;
-  RequireFlag(kitti::MakeTrigravMethods(method_names, settings, &methods, &error),
-              "--methods: " + error);
+  const bool methods_ok = kitti::MakeTrigravMethods(method_names, settings, &methods, &error);
+  RequireFlag(methods_ok, "--methods: " + error);
+#ifdef TRIGRAV_KITTI_WITH_PEERS
+  if (FLAGS_peers) kitti::AppendPeerMethods(FLAGS_threshold_px, &methods);
+#else
+  RequireFlag(!FLAGS_peers, "--peers: built without OpenCV's calib3d and OpenGV (no peers)");
+#endif
 
   const std::string cache_dir = FLAGS_cache_dir.empty()
                                     ? (fs::path(FLAGS_output_dir) / "feature_cache").string()

@@ -8,8 +8,8 @@
 //
 // Writes to --output_dir: poses.csv (one row per triplet, method and stage), summary.csv (medians,
 // failures, time, ATE per method and stage), trajectories.csv (chained, aligned camera centres;
-// plot with plot_kitti_trajectories.py), frames.csv (per triplet: tracks, feature and matching
-// time). Features are cached per frame in --cache_dir.
+// plot with plot_kitti_trajectories.py), frames.csv (per frame: SIFT time, tracks and matching
+// time of the triplet it starts). Features are cached per frame in --cache_dir.
 
 #include <gflags/gflags.h>
 
@@ -89,7 +89,8 @@ DEFINE_double(window_x_px, 250.0, "Matching search window: largest |dx| between 
 DEFINE_double(window_y_px, 120.0, "Matching search window: largest |dy| between frames (px).");
 DEFINE_uint64(seed, 1, "Seed of the IMU noise and of RANSAC (triplet f uses seed + f).");
 DEFINE_int32(threads, 2, "Worker threads.");
-DEFINE_bool(peers, false,
+DEFINE_bool(peers,
+            false,
             "Also run the OpenCV / OpenGV five-point peers (examples/peers/), if built with them.");
 
 namespace {
@@ -108,8 +109,13 @@ std::vector<std::string> SplitCommas(const std::string& list) {
   return items;
 }
 
+// True when `path` is `folder` or below it (after resolving symlinks, "." and ".."); false when
+// either cannot be resolved.
 bool IsInside(const fs::path& path, const fs::path& folder) {
-  const fs::path p = fs::weakly_canonical(path), f = fs::weakly_canonical(folder);
+  std::error_code ec_path, ec_folder;
+  const fs::path p = fs::weakly_canonical(path, ec_path);
+  const fs::path f = fs::weakly_canonical(folder, ec_folder);
+  if (ec_path || ec_folder) return false;
   auto pi = p.begin();
   for (auto fi = f.begin(); fi != f.end(); ++fi, ++pi) {
     if (fi->empty()) continue;  // trailing separator
@@ -355,12 +361,20 @@ int main(int argc, char** argv) {
   RequireFlag(kitti::WriteTrajectoriesCsv((out / "trajectories.csv").string(), sequence, summaries),
               "cannot write " + (out / "trajectories.csv").string());
   {
+    // Per frame f: SIFT time if detected in this run (empty if from the cache); tracks and
+    // loading / matching time of the triplet (f, f+1, f+2) (empty for the last two frames).
     std::ofstream frames(out / "frames.csv");
-    frames << "frame,tracks,sift_ms,features_ms,matching_ms\n";
-    for (int t = 0; t < num_triplets; ++t) {
-      const kitti::TripletData& s = frame_stats[t];
-      frames << s.frame << "," << s.tracks.size() << "," << detect_ms[t] << ","
-             << 1e3 * s.features_s << "," << 1e3 * s.matching_s << "\n";
+    frames << "frame,sift_ms,triplet_tracks,triplet_features_ms,triplet_matching_ms\n";
+    for (int i = 0; i < sequence.num_frames(); ++i) {
+      frames << sequence.first_frame + i << ",";
+      if (detect_ms[i] >= 0.0) frames << detect_ms[i];
+      if (i < num_triplets) {
+        const kitti::TripletData& s = frame_stats[i];
+        frames << "," << s.tracks.size() << "," << 1e3 * s.features_s << "," << 1e3 * s.matching_s
+               << "\n";
+      } else {
+        frames << ",,,\n";
+      }
     }
     RequireFlag(static_cast<bool>(frames), "cannot write " + (out / "frames.csv").string());
   }

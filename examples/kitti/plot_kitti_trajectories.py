@@ -59,7 +59,7 @@ def main():
     columns = min(4, len(keys))
     rows = int(math.ceil(len(keys) / columns))
     fig = plt.figure(figsize=(4.0 * columns + 1.0, 4.2 * rows + 3.0))
-    grid = fig.add_gridspec(rows + 1, columns, height_ratios=[4.2] * rows + [2.6])
+    grid = fig.add_gridspec(rows + 1, columns, height_ratios=[4.2] * rows + [2.6], hspace=0.35)
     for i, key in enumerate(keys):
         ax = fig.add_subplot(grid[i // columns, i % columns])
         t = trajectories[key]

@@ -7,8 +7,9 @@
 //   timing      solver alone (ns per call over the stability scenes) and inside RANSAC
 //               (EstimateThreeViewPoseRobust, 200 triplets, 30 % outliers, 1 px, 3 px threshold);
 //   sample20    every method gets the same 20 triplets (no outliers), 1000 scenes per level, image
-//               noise 0-2 px and IMU pitch / roll noise 0.25-1 deg at 1 px: RANSAC with the method's
-//               own minimal solver and local optimisation ("+ransac") and its bundle adjustment
+//               noise 0-2 px and IMU pitch / roll noise 0.25-1 deg at 1 px: RANSAC with the
+//               method's own minimal solver and local optimisation ("+ransac") and its bundle
+//               adjustment
 //               ("+ransac+ba"), both from one InitializeAndRefine call, threshold 3 px x
 //               max(1, sigma / 1 px); yaw-only refinement without IMU noise, gravity prior with
 //               sigma = the IMU noise otherwise.
@@ -26,6 +27,8 @@
 
 #include <gflags/gflags.h>
 #include <glog/logging.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -37,15 +40,13 @@
 #include <fstream>
 #include <functional>
 #include <limits>
-#include <mutex>
 #include <numeric>
 #include <random>
 #include <string>
-#include <sys/stat.h>
-#include <unistd.h>
-#include <thread>
 #include <vector>
 
+#include "parallel_for.h"
+#include "pooled_errors.h"
 #include "require_flag.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/initializers/essential_5pt.h"
@@ -183,9 +184,9 @@ const std::vector<DirectMethod>& DirectMethods() {
 
 const std::vector<InitialSolver>& RansacSolvers() {
   static const std::vector<InitialSolver> solvers = {
-      InitialSolver::kEssential8pt,       InitialSolver::kEssential5pt,
-      InitialSolver::kTrifocalLinear,     InitialSolver::kTrifocal3ptSextic,
-      InitialSolver::kTrifocal3pt,        InitialSolver::kTrifocal4pt};
+      InitialSolver::kEssential8pt,   InitialSolver::kEssential5pt,
+      InitialSolver::kTrifocalLinear, InitialSolver::kTrifocal3ptSextic,
+      InitialSolver::kTrifocal3pt,    InitialSolver::kTrifocal4pt};
   return solvers;
 }
 
@@ -196,11 +197,16 @@ enum class Experiment { kStability, kNoise, kPitch, kRoll, kSample20 };
 
 const char* ExperimentName(Experiment e) {
   switch (e) {
-    case Experiment::kStability: return "stability";
-    case Experiment::kNoise: return "noise";
-    case Experiment::kPitch: return "pitch";
-    case Experiment::kRoll: return "roll";
-    case Experiment::kSample20: return "sample20";
+    case Experiment::kStability:
+      return "stability";
+    case Experiment::kNoise:
+      return "noise";
+    case Experiment::kPitch:
+      return "pitch";
+    case Experiment::kRoll:
+      return "roll";
+    case Experiment::kSample20:
+      return "sample20";
   }
   return "?";
 }
@@ -211,14 +217,13 @@ struct Level {
   int trials;
 };
 
-// Errors of one output column (a method, or a method's raw / refined estimate) at one level.
+// Errors of one output column (a method, or a method's raw / refined estimate) at one level;
+// failures are counted, not pooled.
 struct Errors {
-  std::vector<double> rotation, translation, scale;  // rotation, translation: 2 per trial
+  trigrav::examples::PooledErrors pooled;
   int trials = 0, failures = 0;
   void Append(const Errors& other) {
-    rotation.insert(rotation.end(), other.rotation.begin(), other.rotation.end());
-    translation.insert(translation.end(), other.translation.begin(), other.translation.end());
-    scale.insert(scale.end(), other.scale.begin(), other.scale.end());
+    pooled.Append(other.pooled);
     trials += other.trials;
     failures += other.failures;
   }
@@ -228,12 +233,7 @@ struct Errors {
       ++failures;
       return;
     }
-    const trigrav::ThreeViewPoseErrors e = trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, pose);
-    for (int k = 0; k < 2; ++k) {
-      rotation.push_back(e.rotation_deg[k]);
-      translation.push_back(e.translation_deg[k]);
-    }
-    scale.push_back(e.relative_scale);
+    pooled.Add(trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, pose));
   }
 };
 
@@ -288,7 +288,8 @@ std::vector<Errors> RunChunk(const Level& level, int trials, std::uint64_t seed)
         options.bundle_adjustment.gravity_sigma_deg = imu_deg;
         options.bundle_adjustment.pixel_sigma_px = std::max(level.noise_px, 0.1);
       }
-      const trigrav::ThreeViewEstimate estimate = trigrav::InitializeAndRefine(observations, options);
+      const trigrav::ThreeViewEstimate estimate =
+          trigrav::InitializeAndRefine(observations, options);
       errors[2 * s].Add(scene, estimate.success, estimate.initial);
       errors[2 * s + 1].Add(scene, estimate.success && estimate.refinement_ran, estimate.refined);
     }
@@ -296,9 +297,7 @@ std::vector<Errors> RunChunk(const Level& level, int trials, std::uint64_t seed)
   return errors;
 }
 
-int Scaled(int trials) {
-  return std::max(1, static_cast<int>(std::lround(trials * FLAGS_trials)));
-}
+int Scaled(int trials) { return std::max(1, static_cast<int>(std::lround(trials * FLAGS_trials))); }
 
 std::vector<Level> Levels() {
   const int stability = Scaled(FLAGS_quick ? 200 : 5000);
@@ -329,8 +328,8 @@ std::vector<Level> Levels() {
 double Quantile(std::vector<double> values, double q) {
   if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
   std::sort(values.begin(), values.end());
-  const std::size_t i = std::min(values.size() - 1,
-                                 static_cast<std::size_t>(std::ceil(q * values.size())) - 1);
+  const std::size_t i =
+      std::min(values.size() - 1, static_cast<std::size_t>(std::ceil(q * values.size())) - 1);
   return values[i];
 }
 
@@ -341,7 +340,9 @@ double Mean(const std::vector<double>& values) {
 
 constexpr double kLogFloor = -17.0;  // log10 of an exactly zero error is shown at this value
 
-double Log10Error(double error_deg) { return std::max(kLogFloor, std::log10(std::max(error_deg, 0.0))); }
+double Log10Error(double error_deg) {
+  return std::max(kLogFloor, std::log10(std::max(error_deg, 0.0)));
+}
 
 double MeanLog10(const std::vector<double>& values) {
   if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -358,8 +359,10 @@ std::ofstream OpenCsv(const std::string& name) {
   return csv;
 }
 
-void WriteAccuracy(const std::vector<Level>& levels, const std::vector<std::vector<Errors>>& results,
-                   Experiment experiment, const std::string& file) {
+void WriteAccuracy(const std::vector<Level>& levels,
+                   const std::vector<std::vector<Errors>>& results,
+                   Experiment experiment,
+                   const std::string& file) {
   std::ofstream csv = OpenCsv(file);
   csv << "experiment,method,sample_size,noise_px,pitch_deg,roll_deg,trials,failures,"
          "rotation_deg,translation_deg,scale,rotation_p90_deg,translation_p90_deg\n";
@@ -369,12 +372,13 @@ void WriteAccuracy(const std::vector<Level>& levels, const std::vector<std::vect
       if (levels[l].experiment != experiment) continue;
       const Errors& e = results[l][c];
       const int sample = experiment == Experiment::kSample20 ? FLAGS_sample20_triplets
-                                                            : DirectMethods()[c].sample_size;
+                                                             : DirectMethods()[c].sample_size;
       csv << ExperimentName(experiment) << ',' << names[c] << ',' << sample << ','
           << levels[l].noise_px << ',' << levels[l].pitch_deg << ',' << levels[l].roll_deg << ','
-          << e.trials << ',' << e.failures << ',' << trigrav::Median(e.rotation) << ','
-          << trigrav::Median(e.translation) << ',' << trigrav::Median(e.scale) << ','
-          << Quantile(e.rotation, 0.9) << ',' << Quantile(e.translation, 0.9) << '\n';
+          << e.trials << ',' << e.failures << ',' << trigrav::Median(e.pooled.rotation_deg) << ','
+          << trigrav::Median(e.pooled.translation_deg) << ','
+          << trigrav::Median(e.pooled.relative_scale) << ',' << Quantile(e.pooled.rotation_deg, 0.9)
+          << ',' << Quantile(e.pooled.translation_deg, 0.9) << '\n';
     }
   }
 }
@@ -393,13 +397,15 @@ void WriteStability(const std::vector<Errors>& errors) {
     const Errors& e = errors[c];
     const char* name = DirectMethods()[c].name;
     summary << name << ',' << e.trials << ',' << e.failures << ',';
-    for (const std::vector<double>* v : {&e.rotation, &e.translation}) {
+    for (const std::vector<double>* v : {&e.pooled.rotation_deg, &e.pooled.translation_deg}) {
       summary << trigrav::Median(*v) << ',' << Quantile(*v, 0.99) << ',' << Mean(*v) << ','
               << Quantile(*v, 1.0) << ',' << MeanLog10(*v) << ',';
     }
-    summary << trigrav::Median(e.scale) << ',' << Quantile(e.scale, 1.0) << '\n';
+    summary << trigrav::Median(e.pooled.relative_scale) << ','
+            << Quantile(e.pooled.relative_scale, 1.0) << '\n';
     for (const auto& [quantity, values] :
-         {std::make_pair("rotation", &e.rotation), std::make_pair("translation", &e.translation)}) {
+         {std::make_pair("rotation", &e.pooled.rotation_deg),
+          std::make_pair("translation", &e.pooled.translation_deg)}) {
       std::vector<int> counts(bins, 0);
       for (const double v : *values) {
         const int b = static_cast<int>(std::floor((Log10Error(v) - kLogFloor) / bin));
@@ -429,7 +435,8 @@ void RunTiming() {
   scene_options.num_points = MaxSampleSize();
   std::mt19937_64 rng(FLAGS_seed);
   std::vector<Input> inputs;
-  for (int i = 0; i < scenes; ++i) inputs.push_back(MakeInput(trigrav::GenerateSyntheticScene(scene_options, &rng)));
+  for (int i = 0; i < scenes; ++i)
+    inputs.push_back(MakeInput(trigrav::GenerateSyntheticScene(scene_options, &rng)));
   // Robust: 200 triplets, 30 % outliers, 1 px, 3 px threshold.
   const int robust_scenes = Scaled(FLAGS_quick ? 2 : 30);
   trigrav::SyntheticSceneOptions robust_options;
@@ -451,12 +458,14 @@ void RunTiming() {
         ThreeViewPose pose;
         sink += method.solve(input, &workspace, &pose) ? 1 : 0;
       }
-      const double ns = std::chrono::duration<double, std::nano>(
-                            std::chrono::steady_clock::now() - start).count();
+      const double ns =
+          std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start)
+              .count();
       best_ns = std::min(best_ns, ns / inputs.size());
     }
     CHECK_GE(sink, 0);
-    csv << method.name << ',' << method.sample_size << ',' << best_ns << ',' << inputs.size() << ',';
+    csv << method.name << ',' << method.sample_size << ',' << best_ns << ',' << inputs.size()
+        << ',';
     if (!method.has_ransac) {
       csv << "nan,nan,0,0,nan,nan\n";  // not an InitialSolver of the robust estimator
       std::fprintf(stderr, "timing %-11s %9.0f ns\n", method.name, best_ns);
@@ -473,14 +482,15 @@ void RunTiming() {
       const auto start = std::chrono::steady_clock::now();
       const trigrav::RobustThreeViewEstimate estimate =
           trigrav::EstimateThreeViewPoseRobust(observations, options);
-      ms.push_back(std::chrono::duration<double, std::milli>(
-                       std::chrono::steady_clock::now() - start).count());
+      ms.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count());
       iterations.push_back(estimate.iterations);
       errors.Add(robust[i], estimate.success, estimate.pose);
     }
     csv << trigrav::Median(ms) << ',' << trigrav::Median(iterations) << ',' << errors.trials << ','
-        << errors.failures << ',' << trigrav::Median(errors.rotation) << ','
-        << trigrav::Median(errors.translation) << '\n';
+        << errors.failures << ',' << trigrav::Median(errors.pooled.rotation_deg) << ','
+        << trigrav::Median(errors.pooled.translation_deg) << '\n';
     std::fprintf(stderr, "timing %-11s %9.0f ns, RANSAC %.2f ms\n", method.name, best_ns,
                  trigrav::Median(ms));
   }
@@ -525,26 +535,23 @@ int main(int argc, char** argv) {
     return (levels[a.level].experiment == Experiment::kSample20) >
            (levels[b.level].experiment == Experiment::kSample20);
   });
+  std::vector<std::vector<Errors>> chunks(items.size());
+  std::atomic<std::size_t> done{0};
+  trigrav::examples::ParallelFor(items.size(), FLAGS_threads, [&](std::size_t i) {
+    chunks[i] = RunChunk(levels[items[i].level], items[i].trials, items[i].seed);
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "\r%zu / %zu chunks, %.0f s", ++done, items.size(), s);
+  });
+  std::fprintf(stderr, "\n");
+  // Merged in item order, so that the output does not depend on which thread finished first.
   std::vector<std::vector<Errors>> results(levels.size());
   for (std::size_t l = 0; l < levels.size(); ++l)
     results[l].resize(ColumnNames(levels[l].experiment).size());
-  std::mutex mutex;
-  std::atomic<std::size_t> next{0};
-  std::size_t done = 0;
-  auto work = [&] {
-    for (std::size_t i = next++; i < items.size(); i = next++) {
-      std::vector<Errors> chunk = RunChunk(levels[items[i].level], items[i].trials, items[i].seed);
-      std::lock_guard<std::mutex> lock(mutex);
-      for (std::size_t c = 0; c < chunk.size(); ++c) results[items[i].level][c].Append(chunk[c]);
-      ++done;
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::fprintf(stderr, "\r%zu / %zu chunks, %.0f s", done, items.size(), s);
-    }
-  };
-  std::vector<std::thread> workers;
-  for (int t = 0; t < FLAGS_threads; ++t) workers.emplace_back(work);
-  for (std::thread& worker : workers) worker.join();
-  std::fprintf(stderr, "\n");
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    for (std::size_t c = 0; c < chunks[i].size(); ++c)
+      results[items[i].level][c].Append(chunks[i][c]);
+  }
 
   for (std::size_t l = 0; l < levels.size(); ++l) {
     if (levels[l].experiment == Experiment::kStability) WriteStability(results[l]);
@@ -557,8 +564,9 @@ int main(int argc, char** argv) {
   RunTiming();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("wrote stability_summary, stability_histogram, stability, noise, pitch, roll, "
-              "sample20 and timing CSVs to %s in %.1f s\n",
-              FLAGS_output_dir.c_str(), seconds);
+  std::printf(
+      "wrote stability_summary, stability_histogram, stability, noise, pitch, roll, "
+      "sample20 and timing CSVs to %s in %.1f s\n",
+      FLAGS_output_dir.c_str(), seconds);
   return 0;
 }

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "pooled_errors.h"
 #include "require_flag.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/initializers/pose_metrics.h"
@@ -111,7 +112,7 @@ int main(int argc, char** argv) {
   scene_options.outlier_ratio = FLAGS_outlier_ratio;
 
   std::mt19937_64 rng(FLAGS_seed);
-  std::vector<double> raw_rotation, raw_translation, raw_scale, rotation, translation, scale;
+  trigrav::examples::PooledErrors raw_errors, refined_errors;
   std::vector<double> ba_ms, ransac_ms;
   int failures = 0;
   for (int trial = 0; trial < FLAGS_trials; ++trial) {
@@ -128,15 +129,8 @@ int main(int argc, char** argv) {
         trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, estimate.initial);
     const trigrav::ThreeViewPoseErrors refined =
         trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, estimate.refined);
-    // Summary medians pool views 2 and 3 (the paper's and the math note's convention).
-    for (int k = 0; k < 2; ++k) {
-      raw_rotation.push_back(raw.rotation_deg[k]);
-      raw_translation.push_back(raw.translation_deg[k]);
-      rotation.push_back(refined.rotation_deg[k]);
-      translation.push_back(refined.translation_deg[k]);
-    }
-    raw_scale.push_back(raw.relative_scale);
-    scale.push_back(refined.relative_scale);
+    raw_errors.Add(raw);
+    refined_errors.Add(refined);
     ba_ms.push_back(1e3 * estimate.ba_time_s);
     ransac_ms.push_back(1e3 * estimate.ransac_time_s);
     if (trial < FLAGS_print_trials) {
@@ -154,8 +148,10 @@ int main(int argc, char** argv) {
       "median over %zu trials (%d failures), views 2 and 3 pooled: rotation %.4f -> %.4f deg, "
       "translation "
       "%.4f -> %.4f deg, scale %.5f -> %.5f; RANSAC %.2f ms, BA %.2f ms\n",
-      scale.size(), failures, trigrav::Median(raw_rotation), trigrav::Median(rotation),
-      trigrav::Median(raw_translation), trigrav::Median(translation), trigrav::Median(raw_scale),
-      trigrav::Median(scale), trigrav::Median(ransac_ms), trigrav::Median(ba_ms));
+      refined_errors.relative_scale.size(), failures, trigrav::Median(raw_errors.rotation_deg),
+      trigrav::Median(refined_errors.rotation_deg), trigrav::Median(raw_errors.translation_deg),
+      trigrav::Median(refined_errors.translation_deg), trigrav::Median(raw_errors.relative_scale),
+      trigrav::Median(refined_errors.relative_scale), trigrav::Median(ransac_ms),
+      trigrav::Median(ba_ms));
   return 0;
 }

@@ -16,9 +16,10 @@
 #include <fstream>
 #include <random>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "parallel_for.h"
+#include "pooled_errors.h"
 #include "require_flag.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/initializers/pose_metrics.h"
@@ -49,6 +50,11 @@ struct Medians {
   double rotation = 0.0, translation = 0.0, scale = 0.0;
 };
 
+Medians MediansOf(const trigrav::examples::PooledErrors& errors) {
+  return {trigrav::Median(errors.rotation_deg), trigrav::Median(errors.translation_deg),
+          trigrav::Median(errors.relative_scale)};
+}
+
 struct Result {
   Setting setting;
   Medians raw, refined;
@@ -69,7 +75,8 @@ Result Run(const Setting& setting) {
   options.bundle_adjustment.rotation_model = setting.model;
   options.bundle_adjustment.gravity_sigma_deg = std::max(setting.imu_deg, 0.1);
   std::mt19937_64 rng(FLAGS_seed);
-  std::vector<double> raw[3], refined[3], ba_ms;
+  trigrav::examples::PooledErrors raw, refined;
+  std::vector<double> ba_ms;
   Result result{setting, {}, {}, 0, 0.0};
   for (int trial = 0; trial < FLAGS_trials; ++trial) {
     const trigrav::SyntheticScene scene = trigrav::GenerateSyntheticScene(scene_options, &rng);
@@ -80,23 +87,12 @@ Result Run(const Setting& setting) {
       ++result.failures;
       continue;
     }
-    const trigrav::ThreeViewPoseErrors e0 =
-        trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, estimate.initial);
-    const trigrav::ThreeViewPoseErrors e1 =
-        trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, estimate.refined);
-    for (int k = 0; k < 2; ++k) {
-      raw[0].push_back(e0.rotation_deg[k]);
-      raw[1].push_back(e0.translation_deg[k]);
-      refined[0].push_back(e1.rotation_deg[k]);
-      refined[1].push_back(e1.translation_deg[k]);
-    }
-    raw[2].push_back(e0.relative_scale);
-    refined[2].push_back(e1.relative_scale);
+    raw.Add(trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, estimate.initial));
+    refined.Add(trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, estimate.refined));
     ba_ms.push_back(1e3 * estimate.ba_time_s);
   }
-  result.raw = {trigrav::Median(raw[0]), trigrav::Median(raw[1]), trigrav::Median(raw[2])};
-  result.refined = {trigrav::Median(refined[0]), trigrav::Median(refined[1]),
-                    trigrav::Median(refined[2])};
+  result.raw = MediansOf(raw);
+  result.refined = MediansOf(refined);
   result.ba_ms = trigrav::Median(ba_ms);
   return result;
 }
@@ -145,16 +141,11 @@ int main(int argc, char** argv) {
 
   const std::vector<Setting> settings = Settings();
   std::vector<Result> results(settings.size());
-  std::atomic<std::size_t> next{0}, done{0};
-  auto work = [&] {
-    for (std::size_t i = next++; i < settings.size(); i = next++) {
-      results[i] = Run(settings[i]);
-      std::fprintf(stderr, "\r%zu / %zu settings", ++done, settings.size());
-    }
-  };
-  std::vector<std::thread> workers;
-  for (int t = 0; t < FLAGS_threads; ++t) workers.emplace_back(work);
-  for (std::thread& worker : workers) worker.join();
+  std::atomic<std::size_t> done{0};
+  trigrav::examples::ParallelFor(settings.size(), FLAGS_threads, [&](std::size_t i) {
+    results[i] = Run(settings[i]);
+    std::fprintf(stderr, "\r%zu / %zu settings", ++done, settings.size());
+  });
   std::fprintf(stderr, "\n");
 
   csv << "solver,model,noise_px,imu_deg,trials,failures,raw_rotation_deg,raw_translation_deg,"

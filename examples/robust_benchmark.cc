@@ -5,31 +5,19 @@
 
 #include <benchmark/benchmark.h>
 
-#include <algorithm>
-#include <random>
 #include <vector>
 
+#include "pooled_errors.h"
+#include "robust_benchmark_problems.h"
 #include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/robust_three_view.h"
 #include "trigrav/initializers/synthetic_scene.h"
 
 namespace {
 
-constexpr int kNumProblems = 20;
-constexpr double kThresholdPx = 1.5;  // 3 sigma at 0.5 px
-
 const std::vector<trigrav::SyntheticScene>& Problems() {
-  static const std::vector<trigrav::SyntheticScene> problems = [] {
-    std::mt19937_64 rng(2026);
-    trigrav::SyntheticSceneOptions options;
-    options.num_points = 500;
-    options.pixel_noise_px = 0.5;
-    options.outlier_ratio = 0.3;
-    std::vector<trigrav::SyntheticScene> scenes;
-    for (int i = 0; i < kNumProblems; ++i)
-      scenes.push_back(trigrav::GenerateSyntheticScene(options, &rng));
-    return scenes;
-  }();
+  static const std::vector<trigrav::SyntheticScene> problems =
+      trigrav::examples::RobustBenchmarkScenes();
   return problems;
 }
 
@@ -40,26 +28,26 @@ void BM_RobustEstimate(benchmark::State& state, trigrav::InitialSolver solver) {
   }
   trigrav::RobustThreeViewOptions options;
   options.solver = solver;
-  options.ransac.max_error = kThresholdPx;
-  std::vector<double> rotation_errors, translation_errors, iterations;
+  options.ransac.max_error = trigrav::examples::kRobustBenchmarkThresholdPx;
+  trigrav::examples::PooledErrors errors;  // of the first pass over the problems
+  std::vector<double> iterations;
   std::size_t i = 0;
   for (auto _ : state) {
     const std::size_t p = i++ % observations.size();
     const trigrav::RobustThreeViewEstimate estimate =
         trigrav::EstimateThreeViewPoseRobust(observations[p], options);
     benchmark::DoNotOptimize(estimate.num_inliers);
-    if (rotation_errors.size() < 2 * observations.size()) {
-      const trigrav::ThreeViewPoseErrors e =
-          trigrav::ComputeThreeViewPoseErrors(Problems()[p].ground_truth, estimate.pose);
-      for (int k = 0; k < 2; ++k) {
-        rotation_errors.push_back(estimate.success ? e.rotation_deg[k] : 180.0);
-        translation_errors.push_back(estimate.success ? e.translation_deg[k] : 180.0);
+    if (iterations.size() < observations.size()) {
+      if (estimate.success) {
+        errors.Add(trigrav::ComputeThreeViewPoseErrors(Problems()[p].ground_truth, estimate.pose));
+      } else {
+        errors.AddFailure();
       }
       iterations.push_back(estimate.iterations);
     }
   }
-  state.counters["rot_deg"] = trigrav::Median(rotation_errors);
-  state.counters["trans_deg"] = trigrav::Median(translation_errors);
+  state.counters["rot_deg"] = trigrav::Median(errors.rotation_deg);
+  state.counters["trans_deg"] = trigrav::Median(errors.translation_deg);
   state.counters["iterations"] = trigrav::Median(iterations);
 }
 

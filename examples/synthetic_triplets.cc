@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "pooled_errors.h"
 #include "require_flag.h"
 #include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/synthetic_scene.h"
@@ -117,7 +118,7 @@ int main(int argc, char** argv) {
   scene_options.Check();
 
   std::mt19937_64 rng(FLAGS_seed);
-  std::vector<double> rotation_errors, translation_errors, scale_errors;
+  trigrav::examples::PooledErrors errors;
   int failures = 0;
   std::printf("solver %s, %d triplets, %.2f px noise, %.2f deg IMU noise, seed %llu\n",
               FLAGS_solver.c_str(), FLAGS_points, FLAGS_noise_px, FLAGS_imu_noise_deg,
@@ -138,11 +139,7 @@ int main(int argc, char** argv) {
     // Solvers return candidates best first; the first is what a caller without ground truth takes.
     const trigrav::ThreeViewPoseErrors e =
         trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, solutions[0]);
-    for (int k = 0; k < 2; ++k) {
-      rotation_errors.push_back(e.rotation_deg[k]);
-      translation_errors.push_back(e.translation_deg[k]);
-    }
-    scale_errors.push_back(e.relative_scale);
+    errors.Add(e);
     if (trial < FLAGS_print_trials) {
       std::printf("%6d %12.3e %12.3e %12.3e %12.3e %10.3e\n", trial, e.rotation_deg[0],
                   e.rotation_deg[1], e.translation_deg[0], e.translation_deg[1], e.relative_scale);
@@ -151,7 +148,7 @@ int main(int argc, char** argv) {
   std::printf(
       "summary: %d trials, %d without solution, median rotation %.4g deg, median translation %.4g "
       "deg, median |log scale ratio| %.4g\n",
-      FLAGS_trials, failures, trigrav::Median(rotation_errors), trigrav::Median(translation_errors),
-      trigrav::Median(scale_errors));
+      FLAGS_trials, failures, trigrav::Median(errors.rotation_deg),
+      trigrav::Median(errors.translation_deg), trigrav::Median(errors.relative_scale));
   return 0;
 }

@@ -5,6 +5,8 @@ include(${CMAKE_CURRENT_LIST_DIR}/bad_flag_test.cmake)
 
 set(nonnegative "must be finite and >= 0")
 set(positive "must be positive and finite")
+set(outlier_ratio_range "--outlier_ratio must be in \\[0, 1\\)")
+set(threads_range "--threads must be in \\[1, 256\\]")
 
 trigrav_add_bad_flag_test(synthetic_triplets_unknown_solver synthetic_triplets
   "unknown --solver=9pt" --solver=9pt)
@@ -67,11 +69,11 @@ trigrav_add_bad_flag_test(refine_synthetic_triplets_nan_noise refine_synthetic_t
 trigrav_add_bad_flag_test(refine_synthetic_triplets_negative_imu_noise refine_synthetic_triplets
   "--imu_noise_deg ${nonnegative}" --imu_noise_deg=-1)
 trigrav_add_bad_flag_test(refine_synthetic_triplets_all_outliers refine_synthetic_triplets
-  "--outlier_ratio must be in \\[0, 1\\)" --outlier_ratio=1)
+  "${outlier_ratio_range}" --outlier_ratio=1)
 trigrav_add_bad_flag_test(refine_synthetic_triplets_nan_outliers refine_synthetic_triplets
-  "--outlier_ratio must be in \\[0, 1\\)" --outlier_ratio=nan)
+  "${outlier_ratio_range}" --outlier_ratio=nan)
 trigrav_add_bad_flag_test(refine_synthetic_triplets_negative_outliers refine_synthetic_triplets
-  "--outlier_ratio must be in \\[0, 1\\)" --outlier_ratio=-0.1)
+  "${outlier_ratio_range}" --outlier_ratio=-0.1)
 trigrav_add_bad_flag_test(refine_synthetic_triplets_too_few_points refine_synthetic_triplets
   "--points must be at least the minimal sample of --solver=3pt \\(3\\)" --points=2)
 trigrav_add_bad_flag_test(refine_synthetic_triplets_8pt_seven_points refine_synthetic_triplets
@@ -90,13 +92,13 @@ trigrav_add_bad_flag_test(refinement_benchmark_zero_trials refinement_benchmark
 trigrav_add_bad_flag_test(refinement_benchmark_seven_points refinement_benchmark
   "--points must be >= 8" --points=7)
 trigrav_add_bad_flag_test(refinement_benchmark_all_outliers refinement_benchmark
-  "--outlier_ratio must be in \\[0, 1\\)" --outlier_ratio=1)
+  "${outlier_ratio_range}" --outlier_ratio=1)
 trigrav_add_bad_flag_test(refinement_benchmark_nan_outliers refinement_benchmark
-  "--outlier_ratio must be in \\[0, 1\\)" --outlier_ratio=nan)
+  "${outlier_ratio_range}" --outlier_ratio=nan)
 trigrav_add_bad_flag_test(refinement_benchmark_zero_threads refinement_benchmark
-  "--threads must be in \\[1, 256\\]" --threads=0)
+  "${threads_range}" --threads=0)
 trigrav_add_bad_flag_test(refinement_benchmark_too_many_threads refinement_benchmark
-  "--threads must be in \\[1, 256\\]" --threads=100000)
+  "${threads_range}" --threads=100000)
 trigrav_add_bad_flag_test(refinement_benchmark_zero_threshold refinement_benchmark
   "--threshold_sigmas ${positive}" --threshold_sigmas=0)
 trigrav_add_bad_flag_test(refinement_benchmark_nan_threshold refinement_benchmark
@@ -106,9 +108,9 @@ trigrav_add_bad_flag_test(refinement_benchmark_unwritable_output refinement_benc
   --output=/nonexistent_trigrav_dir/refinement.csv)
 
 trigrav_add_bad_flag_test(paper_experiments_zero_threads paper_experiments
-  "--threads must be in \\[1, 256\\]" --threads=0)
+  "${threads_range}" --threads=0)
 trigrav_add_bad_flag_test(paper_experiments_negative_threads paper_experiments
-  "--threads must be in \\[1, 256\\]" --threads=-2)
+  "${threads_range}" --threads=-2)
 trigrav_add_bad_flag_test(paper_experiments_zero_trials paper_experiments
   "--trials must be in \\(0, 100\\]" --trials=0)
 trigrav_add_bad_flag_test(paper_experiments_nan_trials paper_experiments
@@ -125,12 +127,13 @@ trigrav_add_bad_flag_test(paper_experiments_output_dir_is_a_file paper_experimen
 
 # kitti_triplets (built when OpenCV is found). Flags are checked before any file is read, so an
 # existing folder (tests/) stands in for the dataset; the output goes to the build tree.
-set(kitti_ok --kitti_dir=${CMAKE_CURRENT_SOURCE_DIR} --output_dir=${CMAKE_CURRENT_BINARY_DIR}/kitti_bad_flags)
+set(kitti_output --output_dir=${CMAKE_CURRENT_BINARY_DIR}/kitti_bad_flags)
+set(kitti_ok --kitti_dir=${CMAKE_CURRENT_SOURCE_DIR} ${kitti_output})
 trigrav_add_bad_flag_test(kitti_triplets_no_kitti_dir kitti_triplets
-  "--kitti_dir is required" --output_dir=${CMAKE_CURRENT_BINARY_DIR}/kitti_bad_flags)
+  "--kitti_dir is required" ${kitti_output})
 trigrav_add_bad_flag_test(kitti_triplets_missing_kitti_dir kitti_triplets
   "--kitti_dir: no folder /nonexistent_trigrav_kitti" --kitti_dir=/nonexistent_trigrav_kitti
-  --output_dir=${CMAKE_CURRENT_BINARY_DIR}/kitti_bad_flags)
+  ${kitti_output})
 trigrav_add_bad_flag_test(kitti_triplets_bad_sequence kitti_triplets
   "--sequence must be two digits" ${kitti_ok} --sequence=0x)
 trigrav_add_bad_flag_test(kitti_triplets_short_range kitti_triplets

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <random>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -191,14 +192,18 @@ TEST(RobustThreeView, MisuseThrowsAndHopelessInputFails) {
   EXPECT_TRUE(none.pose.IsFinite());
 }
 
-TEST(RobustThreeView, SolverNamesRoundTrip) {
-  for (const InitialSolver solver :
-       {InitialSolver::kTrifocal3pt, InitialSolver::kTrifocal3ptSextic, InitialSolver::kTrifocal4pt,
-        InitialSolver::kTrifocalLinear, InitialSolver::kEssential5pt, InitialSolver::kEssential8pt}) {
+TEST(RobustThreeView, SolverNamesRoundTripAndSampleSizes) {
+  const std::vector<std::pair<InitialSolver, int>> solvers = {
+      {InitialSolver::kTrifocal3pt, 3},    {InitialSolver::kTrifocal3ptSextic, 3},
+      {InitialSolver::kTrifocal4pt, 4},    {InitialSolver::kTrifocalLinear, 7},
+      {InitialSolver::kEssential5pt, 5},   {InitialSolver::kEssential8pt, 8}};
+  for (const auto& [solver, sample_size] : solvers) {
     InitialSolver parsed;
     ASSERT_TRUE(ParseInitialSolver(InitialSolverName(solver), &parsed));
     EXPECT_EQ(parsed, solver);
+    EXPECT_EQ(MinimalSampleSize(solver), sample_size) << InitialSolverName(solver);
   }
+  EXPECT_THROW(InitialSolverName(static_cast<InitialSolver>(99)), std::invalid_argument);
   InitialSolver parsed;
   EXPECT_FALSE(ParseInitialSolver("9pt", &parsed));
 }

@@ -1,8 +1,6 @@
 #include "kitti_methods.h"
 
 #include <algorithm>
-#include <chrono>
-#include <utility>
 
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/initializers/robust_three_view.h"
@@ -12,58 +10,45 @@ namespace {
 
 using RotationModel = ThreeViewBundleAdjustmentOptions::RotationModel;
 
-MethodPose Refine(const ThreeViewObservations& observations,
-                  const InitializeAndRefineOptions& options,
-                  const char* stage) {
-  const ThreeViewEstimate estimate = InitializeAndRefine(observations, options);
-  MethodPose pose;
-  pose.stage = stage;
-  pose.success = estimate.success && estimate.refinement_ran;
-  pose.pose = estimate.refined;
-  pose.num_inliers = estimate.num_inliers;
-  pose.time_s = estimate.total_time_s;
-  return pose;
+// The refined stage of an InitializeAndRefine estimate; its time includes the RANSAC.
+MethodPose RefinedStage(const char* stage, const ThreeViewEstimate& estimate) {
+  return {stage, estimate.success && estimate.refinement_ran, estimate.refined,
+          estimate.num_inliers, estimate.total_time_s};
 }
 
 Method MakeMethod(InitialSolver solver, bool refine, const TrigravMethodSettings& settings) {
+  InitializeAndRefineOptions options;
+  options.solver = solver;
+  options.inlier_threshold_px = settings.ransac.max_error;
+  options.ransac = settings.ransac;
+  options.refine = refine;
+  options.reclassification_rounds = settings.reclassification_rounds;
+  options.bundle_adjustment = settings.bundle_adjustment;
+  options.bundle_adjustment.rotation_model = RotationModel::kYawOnly;
   Method method;
   method.name = InitialSolverName(solver);
-  method.run = [solver, refine, settings](const ThreeViewObservations& observations,
-                                          std::uint64_t seed) {
-    std::vector<MethodPose> poses;
-    RobustThreeViewOptions robust;
-    robust.solver = solver;
-    robust.ransac = settings.ransac;
-    robust.ransac.seed = seed;
-    const auto start = std::chrono::steady_clock::now();
-    const RobustThreeViewEstimate estimate = EstimateThreeViewPoseRobust(observations, robust);
-    MethodPose raw;
-    raw.stage = kRawStage;
-    raw.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    raw.success = estimate.success;
-    raw.pose = estimate.pose;
-    raw.num_inliers = estimate.num_inliers;
-    poses.push_back(raw);
-    if (!refine) return poses;
-    InitializeAndRefineOptions options;
-    options.solver = solver;
-    options.inlier_threshold_px = settings.ransac.max_error;
-    options.seed = seed;
-    options.ransac = settings.ransac;
-    options.reclassification_rounds = settings.reclassification_rounds;
-    options.bundle_adjustment = settings.bundle_adjustment;
-    for (const auto& [model, stage] :
-         {std::pair{RotationModel::kYawOnly, kYawOnlyStage},
-          std::pair{RotationModel::kGravityPrior, kGravityPriorStage}}) {
-      options.bundle_adjustment.rotation_model = model;
-      if (raw.success) {
-        poses.push_back(Refine(observations, options, stage));
-      } else {
-        MethodPose failed;
-        failed.stage = stage;
-        poses.push_back(failed);
-      }
+  method.run = [options](const ThreeViewObservations& observations, std::uint64_t seed) {
+    InitializeAndRefineOptions run_options = options;
+    run_options.seed = seed;
+    // One call gives the raw stage (its RANSAC estimate) and the yaw-only refinement of it.
+    const ThreeViewEstimate yaw_only = InitializeAndRefine(observations, run_options);
+    // initial_inliers is filled only when the estimate was refined.
+    std::vector<MethodPose> poses = {
+        {kRawStage, yaw_only.success, yaw_only.initial,
+         run_options.refine ? yaw_only.num_initial_inliers : yaw_only.num_inliers,
+         yaw_only.ransac_time_s}};
+    if (!run_options.refine) return poses;
+    poses.push_back(RefinedStage(kYawOnlyStage, yaw_only));
+    if (!yaw_only.success) {  // no RANSAC estimate: the gravity-prior stage fails alike
+      poses.push_back(RefinedStage(kGravityPriorStage, yaw_only));
+      return poses;
     }
+    // Same seed, so the same RANSAC estimate, refined with the other rotation model.
+    // InitializeAndRefine has no entry point that starts from a given estimate, so this RANSAC
+    // runs a second time.
+    run_options.bundle_adjustment.rotation_model = RotationModel::kGravityPrior;
+    poses.push_back(
+        RefinedStage(kGravityPriorStage, InitializeAndRefine(observations, run_options)));
     return poses;
   };
   return method;

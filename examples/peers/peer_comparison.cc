@@ -16,28 +16,33 @@
 #include <gflags/gflags.h>
 #include <time.h>
 
-#include <algorithm>
-#include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <functional>
 #include <limits>
 #include <random>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "parallel_for.h"
 #include "peer_estimators.h"
+#include "pooled_errors.h"
 #include "require_flag.h"
+#include "robust_benchmark_problems.h"
 #include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/synthetic_scene.h"
 
 DEFINE_int32(solver_problems, 1000, "(a) Noise-free problems for the minimal solvers.");
 DEFINE_int32(solver_passes, 21, "(a) Timed passes over the problems; the median pass counts.");
-DEFINE_int32(robust_problems, 20, "(b) Problems (robust_benchmark uses 20).");
+DEFINE_int32(robust_problems,
+             trigrav::examples::kRobustBenchmarkProblems,
+             "(b) Problems (the default: robust_benchmark's).");
 DEFINE_int32(robust_repetitions, 5, "(b) Timed runs of each estimate; the median counts.");
-DEFINE_uint64(robust_seed, 2026, "(b) Seed of the problems (robust_benchmark's is 2026).");
+DEFINE_uint64(robust_seed,
+              trigrav::examples::kRobustBenchmarkSeed,
+              "(b) Seed of the problems (the default: robust_benchmark's).");
 DEFINE_int32(accuracy_scenes, 300, "(c) Scenes.");
 DEFINE_int32(accuracy_points, 100, "(c) Triplets per scene.");
 DEFINE_double(accuracy_noise_px, 1.0, "(c) Image noise sigma in pixels.");
@@ -212,23 +217,22 @@ void RunMinimalSolvers() {
 // Errors of one estimator over many problems.
 
 struct Errors {
-  std::vector<double> rotation, translation;  // deg, views 2 and 3 pooled, 180 for a failure
-  std::vector<double> scale;  // |log relative scale|, +inf for a failure or an unknown scale
+  // 180 deg and scale error +inf for a failure; scale error +inf when the scale is unknown.
+  trigrav::examples::PooledErrors pooled;
   std::vector<double> inliers;
   std::vector<double> cpu_seconds, wall_seconds;  // per problem, when timed
   int failures = 0;
 
   void Add(const trigrav::ThreeViewPose& truth, const EstimatorResult& result) {
-    const trigrav::ThreeViewPoseErrors e = trigrav::ComputeThreeViewPoseErrors(truth, result.pose);
-    for (int k = 0; k < 2; ++k) {
-      rotation.push_back(result.success ? e.rotation_deg[k] : 180.0);
-      translation.push_back(result.success ? e.translation_deg[k] : 180.0);
-    }
-    scale.push_back(result.success && result.relative_scale_known
-                        ? e.relative_scale
-                        : std::numeric_limits<double>::infinity());
     inliers.push_back(result.num_inliers);
-    failures += result.success ? 0 : 1;
+    if (!result.success) {
+      ++failures;
+      pooled.AddFailure();
+      return;
+    }
+    trigrav::ThreeViewPoseErrors e = trigrav::ComputeThreeViewPoseErrors(truth, result.pose);
+    if (!result.relative_scale_known) e.relative_scale = std::numeric_limits<double>::infinity();
+    pooled.Add(e);
   }
 };
 
@@ -245,8 +249,9 @@ void PrintErrorTable(const std::vector<NamedEstimator>& estimators,
       std::printf(" %.2f | %.2f |", 1e3 * trigrav::Median(errors[e].cpu_seconds),
                   1e3 * trigrav::Median(errors[e].wall_seconds));
     }
-    std::printf(" %.4f | %.4f | %.4f | %.0f | %d |\n", trigrav::Median(errors[e].rotation),
-                trigrav::Median(errors[e].translation), trigrav::Median(errors[e].scale),
+    const trigrav::examples::PooledErrors& pooled = errors[e].pooled;
+    std::printf(" %.4f | %.4f | %.4f | %.0f | %d |\n", trigrav::Median(pooled.rotation_deg),
+                trigrav::Median(pooled.translation_deg), trigrav::Median(pooled.relative_scale),
                 trigrav::Median(errors[e].inliers), errors[e].failures);
   }
 }
@@ -255,18 +260,13 @@ void PrintErrorTable(const std::vector<NamedEstimator>& estimators,
 // (b) Robust estimates, timed.
 
 void RunRobust() {
-  std::mt19937_64 rng(FLAGS_robust_seed);
-  trigrav::SyntheticSceneOptions options;  // robust_benchmark's problems
-  options.num_points = 500;
-  options.pixel_noise_px = 0.5;
-  options.outlier_ratio = 0.3;
-  constexpr double kThresholdPx = 1.5;
-  std::vector<trigrav::SyntheticScene> scenes;
+  const std::vector<trigrav::SyntheticScene> scenes =
+      trigrav::examples::RobustBenchmarkScenes(FLAGS_robust_problems, FLAGS_robust_seed);
   std::vector<trigrav::ThreeViewObservations> observations;
-  for (int i = 0; i < FLAGS_robust_problems; ++i) {
-    scenes.push_back(trigrav::GenerateSyntheticScene(options, &rng));
-    observations.push_back(trigrav::ToObservations(scenes.back()));
-  }
+  for (const trigrav::SyntheticScene& scene : scenes)
+    observations.push_back(trigrav::ToObservations(scene));
+  const trigrav::SyntheticSceneOptions options = trigrav::examples::RobustBenchmarkSceneOptions();
+  constexpr double kThresholdPx = trigrav::examples::kRobustBenchmarkThresholdPx;
   const std::vector<NamedEstimator> trigrav_estimators = trigrav::peers::TrigravRobustEstimators();
   const std::vector<NamedEstimator> peers = trigrav::peers::PeerEstimators();
   std::vector<NamedEstimator> all = trigrav_estimators;
@@ -297,24 +297,26 @@ void RunRobust() {
     }
   }
   std::printf(
-      "\n## (b) Robust estimates: 500 triplets, 30 %% outliers, 0.5 px\n\n%d problems "
-      "(robust_benchmark's, seed %llu), threshold %.1f px, f = 500 px; time: median over "
+      "\n## (b) Robust estimates: %d triplets, %.0f %% outliers, %g px\n\n%d problems "
+      "(robust_benchmark's, seed %llu), threshold %.1f px, f = %g px; time: median over "
       "the problems of the median of %d runs, one thread, CPU time of the process (wall time "
       "for reference); load average %s before, %s "
       "after. Errors: medians, views 2 and 3 pooled.\n",
+      options.num_points, 100.0 * options.outlier_ratio, options.pixel_noise_px,
       FLAGS_robust_problems, static_cast<unsigned long long>(FLAGS_robust_seed), kThresholdPx,
-      FLAGS_robust_repetitions, load_before.c_str(), LoadAverage().c_str());
+      options.focal_px, FLAGS_robust_repetitions, load_before.c_str(), LoadAverage().c_str());
   PrintErrorTable(all, errors, /*with_time=*/true);
   const std::size_t n = trigrav_estimators.size();
-  PrintRatios("Ratios trigrav / peer: CPU time / rotation error / translation error:",
-              Names(trigrav_estimators), Names(peers), [&](std::size_t r, std::size_t c) {
-                const Errors& a = errors[r];
-                const Errors& b = errors[n + c];
-                return Format("%.2f / %.2f / %.2f",
-                              trigrav::Median(a.cpu_seconds) / trigrav::Median(b.cpu_seconds),
-                              trigrav::Median(a.rotation) / trigrav::Median(b.rotation),
-                              trigrav::Median(a.translation) / trigrav::Median(b.translation));
-              });
+  PrintRatios(
+      "Ratios trigrav / peer: CPU time / rotation error / translation error:",
+      Names(trigrav_estimators), Names(peers), [&](std::size_t r, std::size_t c) {
+        const Errors& a = errors[r];
+        const Errors& b = errors[n + c];
+        return Format(
+            "%.2f / %.2f / %.2f", trigrav::Median(a.cpu_seconds) / trigrav::Median(b.cpu_seconds),
+            trigrav::Median(a.pooled.rotation_deg) / trigrav::Median(b.pooled.rotation_deg),
+            trigrav::Median(a.pooled.translation_deg) / trigrav::Median(b.pooled.translation_deg));
+      });
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -337,17 +339,11 @@ void RunAccuracy() {
   all.insert(all.end(), peers.begin(), peers.end());
 
   std::vector<std::vector<EstimatorResult>> results(scenes.size());
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    for (std::size_t s = next++; s < scenes.size(); s = next++) {
-      const trigrav::ThreeViewObservations observations = trigrav::ToObservations(scenes[s]);
-      for (const NamedEstimator& e : all)
-        results[s].push_back(e.estimate(observations, FLAGS_accuracy_threshold_px));
-    }
-  };
-  std::vector<std::thread> workers;
-  for (int t = 0; t < FLAGS_threads; ++t) workers.emplace_back(work);
-  for (std::thread& worker : workers) worker.join();
+  trigrav::examples::ParallelFor(scenes.size(), FLAGS_threads, [&](std::size_t s) {
+    const trigrav::ThreeViewObservations observations = trigrav::ToObservations(scenes[s]);
+    for (const NamedEstimator& e : all)
+      results[s].push_back(e.estimate(observations, FLAGS_accuracy_threshold_px));
+  });
   std::vector<Errors> errors(all.size());
   for (std::size_t s = 0; s < scenes.size(); ++s) {
     for (std::size_t e = 0; e < all.size(); ++e)
@@ -366,10 +362,11 @@ void RunAccuracy() {
   PrintRatios(
       "Ratios trigrav / peer: rotation error / translation error:", Names(trigrav_estimators),
       Names(peers), [&](std::size_t r, std::size_t c) {
-        return Format(
-            "%.2f / %.2f",
-            trigrav::Median(errors[r].rotation) / trigrav::Median(errors[n + c].rotation),
-            trigrav::Median(errors[r].translation) / trigrav::Median(errors[n + c].translation));
+        const trigrav::examples::PooledErrors& a = errors[r].pooled;
+        const trigrav::examples::PooledErrors& b = errors[n + c].pooled;
+        return Format("%.2f / %.2f",
+                      trigrav::Median(a.rotation_deg) / trigrav::Median(b.rotation_deg),
+                      trigrav::Median(a.translation_deg) / trigrav::Median(b.translation_deg));
       });
 }
 
@@ -385,10 +382,12 @@ int main(int argc, char** argv) {
   RequireFlag(FLAGS_robust_repetitions > 0, "--robust_repetitions must be positive");
   RequireFlag(FLAGS_accuracy_scenes > 0, "--accuracy_scenes must be positive");
   RequireFlag(FLAGS_accuracy_points >= 8, "--accuracy_points must be >= 8");
-  RequireFlag(FLAGS_accuracy_noise_px >= 0.0, "--accuracy_noise_px must be >= 0");
+  RequireFlag(FLAGS_accuracy_noise_px >= 0.0 && std::isfinite(FLAGS_accuracy_noise_px),
+              "--accuracy_noise_px must be finite and >= 0");
   RequireFlag(FLAGS_accuracy_outlier_ratio >= 0.0 && FLAGS_accuracy_outlier_ratio < 0.5,
               "--accuracy_outlier_ratio must be in [0, 0.5)");
-  RequireFlag(FLAGS_accuracy_threshold_px > 0.0, "--accuracy_threshold_px must be positive");
+  RequireFlag(FLAGS_accuracy_threshold_px > 0.0 && std::isfinite(FLAGS_accuracy_threshold_px),
+              "--accuracy_threshold_px must be positive and finite");
   RequireFlag(FLAGS_threads > 0, "--threads must be positive");
   trigrav::peers::RunPeersSingleThreaded();
 

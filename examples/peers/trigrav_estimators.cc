@@ -19,8 +19,19 @@ namespace {
 
 constexpr double kTruthDeg = 1e-6;
 
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+// Times run(), which returns a RobustThreeViewEstimate or a ThreeViewEstimate, and reports its
+// member `pose`.
+template <typename Estimate, typename Run>
+EstimatorResult Timed(const Run& run, ThreeViewPose Estimate::*pose) {
+  const auto start = std::chrono::steady_clock::now();
+  const Estimate estimate = run();
+  EstimatorResult result;
+  result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.success = estimate.success;
+  result.message = estimate.message;
+  result.pose = estimate.*pose;
+  result.num_inliers = estimate.num_inliers;
+  return result;
 }
 
 const InitialSolver kSolvers[] = {InitialSolver::kTrifocal3pt, InitialSolver::kTrifocal4pt,
@@ -125,23 +136,15 @@ NamedMinimalSolver Essential5ptMinimalSolver() {
 std::vector<NamedEstimator> TrigravRobustEstimators() {
   std::vector<NamedEstimator> estimators;
   for (const InitialSolver solver : kSolvers) {
-    estimators.push_back({std::string("trigrav-") + InitialSolverName(solver),
-                          RansacDescription(solver),
-                          [solver](const ThreeViewObservations& observations, double threshold_px) {
-                            RobustThreeViewOptions options;
-                            options.solver = solver;
-                            options.ransac.max_error = threshold_px;
-                            const auto start = std::chrono::steady_clock::now();
-                            const RobustThreeViewEstimate estimate =
-                                EstimateThreeViewPoseRobust(observations, options);
-                            EstimatorResult result;
-                            result.time_s = SecondsSince(start);
-                            result.success = estimate.success;
-                            result.message = estimate.message;
-                            result.pose = estimate.pose;
-                            result.num_inliers = estimate.num_inliers;
-                            return result;
-                          }});
+    estimators.push_back(
+        {std::string("trigrav-") + InitialSolverName(solver), RansacDescription(solver),
+         [solver](const ThreeViewObservations& observations, double threshold_px) {
+           RobustThreeViewOptions options;
+           options.solver = solver;
+           options.ransac.max_error = threshold_px;
+           return Timed([&] { return EstimateThreeViewPoseRobust(observations, options); },
+                        &RobustThreeViewEstimate::pose);
+         }});
   }
   return estimators;
 }
@@ -158,15 +161,8 @@ std::vector<NamedEstimator> TrigravRefinedEstimators() {
            InitializeAndRefineOptions options;
            options.solver = solver;
            options.inlier_threshold_px = threshold_px;
-           const auto start = std::chrono::steady_clock::now();
-           const ThreeViewEstimate estimate = InitializeAndRefine(observations, options);
-           EstimatorResult result;
-           result.time_s = SecondsSince(start);
-           result.success = estimate.success;
-           result.message = estimate.message;
-           result.pose = estimate.refined;
-           result.num_inliers = estimate.num_inliers;
-           return result;
+           return Timed([&] { return InitializeAndRefine(observations, options); },
+                        &ThreeViewEstimate::refined);
          }});
   }
   return estimators;

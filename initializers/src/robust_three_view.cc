@@ -189,27 +189,6 @@ RobustThreeViewEstimate Run(const TripletData& data, const RansacOptions& option
   return estimate;
 }
 
-struct SolverInfo {
-  InitialSolver solver;
-  const char* name;
-  int sample_size;
-};
-constexpr std::array<SolverInfo, 6> kSolvers = {{
-    {InitialSolver::kTrifocal3pt, "3pt", 3},
-    {InitialSolver::kTrifocal3ptSextic, "3pt-sextic", 3},
-    {InitialSolver::kTrifocal4pt, "4pt", 4},
-    {InitialSolver::kTrifocalLinear, "7pt-linear", 7},
-    {InitialSolver::kEssential5pt, "5pt", 5},
-    {InitialSolver::kEssential8pt, "8pt", 8},
-}};
-
-const SolverInfo& Info(InitialSolver solver) {
-  for (const SolverInfo& info : kSolvers) {
-    if (info.solver == solver) return info;
-  }
-  throw std::invalid_argument("trigrav: unknown InitialSolver value");
-}
-
 // Share of the inliers that a camera 2 without baseline explains within `threshold` pixels: the
 // rotation R maximising sum_n x2_n . R x1_n over the inliers' rays (Wahba's problem, solved by the
 // SVD of sum_n x2_n x1_n^T; rays K^-1 [u v 1]^T weighted by their lengths), each inlier counted if
@@ -230,15 +209,13 @@ double ShareExplainedByRotation(const ThreeViewObservations& observations, const
   if (R.determinant() < 0.0) {
     R = svd.matrixU() * Eigen::Vector3d(1.0, 1.0, -1.0).asDiagonal() * svd.matrixV().transpose();
   }
-  const PinholeCamera& camera = observations.cameras[1];
   int explained = 0;
   for (std::size_t n = 0; n < inliers.size(); ++n) {
     if (!inliers[n]) continue;
     const Eigen::Vector3d direction = R * data.raw[0][n];
     if (!(direction.z() > 0.0)) continue;
-    const Eigen::Vector2d pixel(camera.fx * direction.x() / direction.z() + camera.cx,
-                                camera.fy * direction.y() / direction.z() + camera.cy);
-    explained += (pixel - observations.pixels[1][n]).norm() <= threshold;
+    explained +=
+        (observations.cameras[1].Project(direction) - observations.pixels[1][n]).norm() <= threshold;
   }
   return static_cast<double>(explained) / num_inliers;
 }
@@ -247,27 +224,52 @@ double ShareExplainedByRotation(const ThreeViewObservations& observations, const
 // explains more than 80 % of the inliers of the essential matrix (max_H_inlier_ratio = 0.8).
 constexpr double kMaxShareExplainedByRotation = 0.8;
 
+// Turns a successful estimate into a failure with the reason if its inliers show no parallax
+// between views 1 and 2 (header), whatever the method.
+void RejectWithoutParallax(const ThreeViewObservations& observations, const TripletData& data,
+                           double max_error, RobustThreeViewEstimate* estimate) {
+  const double share = ShareExplainedByRotation(observations, data, estimate->inliers, max_error);
+  if (!(share > kMaxShareExplainedByRotation)) return;
+  estimate->message =
+      "no parallax between views 1 and 2: a rotation of camera 2 without baseline explains " +
+      std::to_string(static_cast<int>(std::round(100.0 * share))) + " % of the " +
+      std::to_string(estimate->num_inliers) +
+      " inliers, so camera 2's centre (the scale |C2| = 1) is not observable (zero baseline, pure "
+      "rotation, points at infinity)";
+  estimate->success = false;
+  estimate->pose = ThreeViewPose();
+  estimate->inliers.clear();
+  estimate->num_inliers = 0;
+}
+
+using RunFunction = RobustThreeViewEstimate (*)(const TripletData&, const RansacOptions&);
+
+struct SolverInfo {
+  InitialSolver solver;
+  const char* name;
+  int sample_size;
+  RunFunction run;
+};
+
 template <typename M>
-RobustThreeViewEstimate RunWithParallaxCheck(const ThreeViewObservations& observations,
-                                             const TripletData& data,
-                                             const RansacOptions& options) {
-  RobustThreeViewEstimate estimate = Run<M>(data, options);
-  if (!estimate.success) return estimate;
-  const double share =
-      ShareExplainedByRotation(observations, data, estimate.inliers, options.max_error);
-  if (share > kMaxShareExplainedByRotation) {
-    RobustThreeViewEstimate failure;
-    failure.message = "no parallax between views 1 and 2: a rotation of camera 2 without baseline "
-                      "explains " + std::to_string(static_cast<int>(std::round(100.0 * share))) +
-                      " % of the " + std::to_string(estimate.num_inliers) +
-                      " inliers, so camera 2's centre (the scale |C2| = 1) is not observable (zero "
-                      "baseline, pure rotation, points at infinity)";
-    failure.iterations = estimate.iterations;
-    failure.num_models_scored = estimate.num_models_scored;
-    failure.num_local_optimizations = estimate.num_local_optimizations;
-    return failure;
+constexpr SolverInfo MakeSolverInfo(InitialSolver solver, const char* name) {
+  return {solver, name, M::kSampleSize, &Run<M>};
+}
+
+constexpr std::array<SolverInfo, 6> kSolvers = {{
+    MakeSolverInfo<Method3pt>(InitialSolver::kTrifocal3pt, "3pt"),
+    MakeSolverInfo<Method3ptSextic>(InitialSolver::kTrifocal3ptSextic, "3pt-sextic"),
+    MakeSolverInfo<Method4pt>(InitialSolver::kTrifocal4pt, "4pt"),
+    MakeSolverInfo<Method7ptLinear>(InitialSolver::kTrifocalLinear, "7pt-linear"),
+    MakeSolverInfo<Method5pt>(InitialSolver::kEssential5pt, "5pt"),
+    MakeSolverInfo<Method8pt>(InitialSolver::kEssential8pt, "8pt"),
+}};
+
+const SolverInfo& Info(InitialSolver solver) {
+  for (const SolverInfo& info : kSolvers) {
+    if (info.solver == solver) return info;
   }
-  return estimate;
+  throw std::invalid_argument("trigrav: unknown InitialSolver value");
 }
 
 }  // namespace
@@ -288,24 +290,11 @@ bool ParseInitialSolver(const std::string& name, InitialSolver* solver) {
 
 RobustThreeViewEstimate EstimateThreeViewPoseRobust(const ThreeViewObservations& observations,
                                                     const RobustThreeViewOptions& options) {
-  observations.Check();
+  const TripletData data(observations);  // its ThreeViewReprojectionError checks the observations
   options.ransac.Check();
-  const TripletData data(observations);
-  switch (options.solver) {
-    case InitialSolver::kTrifocal3pt:
-      return RunWithParallaxCheck<Method3pt>(observations, data, options.ransac);
-    case InitialSolver::kTrifocal3ptSextic:
-      return RunWithParallaxCheck<Method3ptSextic>(observations, data, options.ransac);
-    case InitialSolver::kTrifocal4pt:
-      return RunWithParallaxCheck<Method4pt>(observations, data, options.ransac);
-    case InitialSolver::kTrifocalLinear:
-      return RunWithParallaxCheck<Method7ptLinear>(observations, data, options.ransac);
-    case InitialSolver::kEssential5pt:
-      return RunWithParallaxCheck<Method5pt>(observations, data, options.ransac);
-    case InitialSolver::kEssential8pt:
-      return RunWithParallaxCheck<Method8pt>(observations, data, options.ransac);
-  }
-  throw std::invalid_argument("trigrav: EstimateThreeViewPoseRobust: unknown solver");
+  RobustThreeViewEstimate estimate = Info(options.solver).run(data, options.ransac);
+  if (estimate.success) RejectWithoutParallax(observations, data, options.ransac.max_error, &estimate);
+  return estimate;
 }
 
 }  // namespace trigrav

@@ -9,8 +9,10 @@ namespace {
 
 void CheckRays(const char* solver, const char* name, const std::vector<Eigen::Vector3d>& rays) {
   for (std::size_t n = 0; n < rays.size(); ++n) {
-    const double norm = rays[n].norm();
-    if (!rays[n].allFinite() || !(norm > 0.0) || !std::isfinite(norm)) {
+    // One comparison per ray on the hot path (every solver call): NaN fails both, an infinite entry
+    // or an overflowing length the second; the reason is worked out only on failure.
+    if (!IsUsableDirection(rays[n])) {
+      const double norm = rays[n].norm();
       std::ostringstream message;
       message << "trigrav: " << solver << ": " << name << "[" << n << "] is "
               << (!rays[n].allFinite() ? "not finite"
@@ -65,8 +67,8 @@ void CheckPairs(const char* solver, std::size_t min_pairs, std::size_t max_pairs
 }
 
 void CheckGravity(const char* solver, const char* name, const Eigen::Vector3d& gravity) {
-  const double norm = gravity.norm();
-  if (!gravity.allFinite() || !(norm > 0.0) || !std::isfinite(norm)) {
+  if (!IsUsableDirection(gravity)) {
+    const double norm = gravity.norm();
     std::ostringstream message;
     message << "trigrav: " << solver << ": " << name << " is "
             << (!gravity.allFinite() ? "not finite"

@@ -21,6 +21,14 @@
 namespace trigrav {
 namespace internal {
 
+// True if v is finite with a non-zero length whose square does not overflow, which the input checks
+// demand of rays and gravity. One comparison: NaN fails it, and an infinite entry or an overflowing
+// length gives an infinite squared length.
+inline bool IsUsableDirection(const Eigen::Vector3d& v) {
+  const double squared = v.squaredNorm();
+  return squared > 0.0 && squared <= std::numeric_limits<double>::max();
+}
+
 // Throws std::invalid_argument unless x1, x2, x3 have the same size within
 // [min_triplets, max_triplets], every ray is finite with non-zero length, and solutions is not
 // null.

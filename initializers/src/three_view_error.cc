@@ -83,10 +83,8 @@ double ThreeViewReprojectionError::operator()(const PreparedPose& pose, std::siz
   for (int k = 0; k < 3; ++k) {
     const Eigen::Vector3d p = k == 0 ? point : pose.cam_from_ref[k] * (point - pose.center_in_ref[k]);
     if (!(p.z() > 0.0)) return kInfinity;
-    const PinholeCamera& camera = cameras_[k];
-    const double du = camera.fx * p.x() / p.z() + camera.cx - pixels_[k][n].x();
-    const double dv = camera.fy * p.y() / p.z() + camera.cy - pixels_[k][n].y();
-    largest_squared = std::max(largest_squared, du * du + dv * dv);
+    largest_squared =
+        std::max(largest_squared, (cameras_[k].Project(p) - pixels_[k][n]).squaredNorm());
   }
   const double error = std::sqrt(largest_squared);
   return std::isfinite(error) ? error : kInfinity;

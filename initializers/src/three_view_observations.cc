@@ -4,6 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "solver_utils.h"
+
 namespace trigrav {
 
 bool PinholeCamera::IsValid() const {
@@ -20,8 +22,8 @@ void ThreeViewObservations::Check() const {
       fail("camera " + std::to_string(k + 1) +
            " needs positive, finite focal lengths and a finite principal point");
     }
-    const double g = gravity_in_cam[k].norm();
-    if (!gravity_in_cam[k].allFinite() || !(g > 0.0) || !std::isfinite(g)) {
+    if (!internal::IsUsableDirection(gravity_in_cam[k])) {
+      const double g = gravity_in_cam[k].norm();
       fail("gravity_in_cam[" + std::to_string(k) + "] is " +
            (!gravity_in_cam[k].allFinite() ? "not finite"
             : g > 0.0                      ? "too long (its squared length overflows)"
@@ -34,15 +36,14 @@ void ThreeViewObservations::Check() const {
       fail(message.str());
     }
     for (std::size_t n = 0; n < pixels[k].size(); ++n) {
-      if (!pixels[k][n].allFinite()) {
-        fail("pixels[" + std::to_string(k) + "][" + std::to_string(n) + "] is not finite");
-      }
-      // A finite pixel far from the principal point, or a focal length near the smallest double,
-      // overflows the ray K^-1 [u v 1]^T or its squared length (found by tests/fuzz).
-      if (!std::isfinite(cameras[k].Ray(pixels[k][n]).squaredNorm())) {
-        fail("pixels[" + std::to_string(k) + "][" + std::to_string(n) +
-             "] is too far from the principal point for the focal length (its ray overflows)");
-      }
+      // The ray K^-1 [u v 1]^T has z = 1, so it is usable unless a pixel is not finite or, finite
+      // but far from the principal point (or with a focal length near the smallest double),
+      // overflows the ray or its squared length (found by tests/fuzz).
+      if (internal::IsUsableDirection(cameras[k].Ray(pixels[k][n]))) continue;
+      fail("pixels[" + std::to_string(k) + "][" + std::to_string(n) + "] is " +
+           (!pixels[k][n].allFinite()
+                ? "not finite"
+                : "too far from the principal point for the focal length (its ray overflows)"));
     }
   }
 }

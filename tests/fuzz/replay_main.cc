@@ -1,7 +1,8 @@
 // Replays fuzz inputs through a harness's LLVMFuzzerTestOneInput without libFuzzer (any compiler):
 // every file named on the command line, and every regular file in a named directory. A failing
 // check aborts, so ctest reports the input as a failure; the harness prints which check failed.
-// Exits 1 if no input was found, so that a wrong path cannot pass.
+// Exits 1 for a path that is neither a file nor a folder, or if no input was found, so that a wrong
+// path cannot pass.
 
 #include <algorithm>
 #include <cstddef>
@@ -36,6 +37,9 @@ int main(int argc, char** argv) {
       }
     } else if (std::filesystem::is_regular_file(path)) {
       files.push_back(path);
+    } else {
+      std::fprintf(stderr, "no file or folder %s\n", path.c_str());
+      return 1;
     }
   }
   std::sort(files.begin(), files.end());

@@ -16,6 +16,11 @@ struct PinholeCamera {
   Eigen::Vector3d Ray(const Eigen::Vector2d& pixel) const {
     return Eigen::Vector3d((pixel.x() - cx) / fx, (pixel.y() - cy) / fy, 1.0);
   }
+  // The pixel of a point (or direction) in camera coordinates, z != 0.
+  Eigen::Vector2d Project(const Eigen::Vector3d& point_in_cam) const {
+    return Eigen::Vector2d(fx * point_in_cam.x() / point_in_cam.z() + cx,
+                           fy * point_in_cam.y() / point_in_cam.z() + cy);
+  }
   // True when fx, fy are positive and finite and cx, cy finite.
   bool IsValid() const;
 };

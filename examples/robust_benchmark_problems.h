@@ -1,0 +1,40 @@
+#ifndef TRIGRAV_EXAMPLES_ROBUST_BENCHMARK_PROBLEMS_H_
+#define TRIGRAV_EXAMPLES_ROBUST_BENCHMARK_PROBLEMS_H_
+
+// The problems of robust_benchmark, on which peer_comparison (b) times the peers too: 500 triplets
+// with 30 % outliers and 0.5 px image noise (the other SyntheticSceneOptions at their defaults:
+// f = 500 px, 640 x 480, exact IMU), inlier threshold 1.5 px, 20 scenes from seed 2026.
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "trigrav/initializers/synthetic_scene.h"
+
+namespace trigrav::examples {
+
+inline constexpr int kRobustBenchmarkProblems = 20;
+inline constexpr std::uint64_t kRobustBenchmarkSeed = 2026;
+inline constexpr double kRobustBenchmarkThresholdPx = 1.5;  // 3 sigma at 0.5 px
+
+inline SyntheticSceneOptions RobustBenchmarkSceneOptions() {
+  SyntheticSceneOptions options;
+  options.num_points = 500;
+  options.pixel_noise_px = 0.5;
+  options.outlier_ratio = 0.3;
+  return options;
+}
+
+// `count` scenes drawn one after the other from one generator seeded with `seed`.
+inline std::vector<SyntheticScene> RobustBenchmarkScenes(
+    int count = kRobustBenchmarkProblems, std::uint64_t seed = kRobustBenchmarkSeed) {
+  const SyntheticSceneOptions options = RobustBenchmarkSceneOptions();
+  std::mt19937_64 rng(seed);
+  std::vector<SyntheticScene> scenes;
+  for (int i = 0; i < count; ++i) scenes.push_back(GenerateSyntheticScene(options, &rng));
+  return scenes;
+}
+
+}  // namespace trigrav::examples
+
+#endif  // TRIGRAV_EXAMPLES_ROBUST_BENCHMARK_PROBLEMS_H_

@@ -158,3 +158,15 @@ trigrav_add_bad_flag_test(kitti_triplets_ratio_above_one kitti_triplets
   "--ratio must be in \\(0, 1\\]" ${kitti_ok} --ratio=1.5)
 trigrav_add_bad_flag_test(kitti_triplets_zero_threads kitti_triplets
   "--threads must be in 1..256" ${kitti_ok} --threads=0)
+
+# peer_comparison's KITTI section (--kitti_dir and kitti_triplets' flags; built with the peers and
+# examples/kitti): flags are checked before any section runs.
+if(TARGET trigrav_kitti_peers)
+  trigrav_add_bad_flag_test(peer_comparison_missing_kitti_dir peer_comparison
+    "--kitti_dir: no folder /nonexistent_trigrav_kitti" --kitti_dir=/nonexistent_trigrav_kitti)
+  trigrav_add_bad_flag_test(peer_comparison_kitti_bad_sequence peer_comparison
+    "--sequence must be two digits" --kitti_dir=${CMAKE_CURRENT_SOURCE_DIR} --sequence=0x)
+  trigrav_add_bad_flag_test(peer_comparison_kitti_nan_threshold peer_comparison
+    "--threshold_px must be positive and finite" --kitti_dir=${CMAKE_CURRENT_SOURCE_DIR}
+    --threshold_px=nan)
+endif()

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <ostream>
 #include <utility>
@@ -139,20 +140,43 @@ std::vector<MethodSummary> Summarize(const KittiSequence& sequence,
   return summaries;
 }
 
-void PrintSummaryTable(const std::vector<MethodSummary>& summaries, std::ostream& out) {
-  char line[256];
-  std::snprintf(line, sizeof(line), "%-11s %-13s %7s %6s %7s %7s %6s %6s %7s %4s %5s %7s %8s %6s\n",
-                "method", "stage", "rot", "trans", "yaw", "tilt", "azim", "elev", "|log s|", "fail",
-                "gross", "inliers", "ms/trip", "ATE m");
-  out << line;
+void PrintSummaryTable(const std::vector<MethodSummary>& summaries,
+                       std::ostream& out,
+                       TableFormat format) {
+  // Column widths of the text format; the markdown format separates the same cells with '|'.
+  constexpr int kWidths[] = {-11, -13, 7, 6, 7, 7, 6, 6, 7, 4, 5, 7, 8, 6};
+  const auto print_row = [&](const std::vector<std::string>& cells) {
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      if (format == TableFormat::kMarkdown) {
+        out << (c == 0 ? "| " : " | ") << cells[c];
+      } else {
+        char cell[64];
+        std::snprintf(cell, sizeof(cell), "%*s", kWidths[c], cells[c].c_str());
+        out << (c == 0 ? "" : " ") << cell;
+      }
+    }
+    out << (format == TableFormat::kMarkdown ? " |\n" : "\n");
+  };
+  print_row({"method", "stage", "rot", "trans", "yaw", "tilt", "azim", "elev", "|log s|", "fail",
+             "gross", "inliers", "ms/trip", "ATE m"});
+  if (format == TableFormat::kMarkdown) {
+    out << "|";
+    for (std::size_t c = 0; c < std::size(kWidths); ++c) out << "---|";
+    out << "\n";
+  }
+  const auto number = [](const char* spec, double value) {
+    char text[32];
+    std::snprintf(text, sizeof(text), spec, value);
+    return std::string(text);
+  };
   for (const MethodSummary& s : summaries) {
-    std::snprintf(
-        line, sizeof(line),
-        "%-11s %-13s %7.4f %6.3f %7.4f %7.4f %6.3f %6.3f %7.4f %4d %5d %7.0f %8.2f %6.3f\n",
-        s.method.c_str(), s.stage.c_str(), s.rotation_deg, s.translation_deg, s.yaw_deg, s.tilt_deg,
-        s.azimuth_deg, s.elevation_deg, s.relative_scale, s.num_failures, s.num_gross,
-        s.median_inliers, s.mean_time_ms, s.trajectory.ate_rmse_m);
-    out << line;
+    print_row({s.method, s.stage, number("%.4f", s.rotation_deg),
+               number("%.3f", s.translation_deg), number("%.4f", s.yaw_deg),
+               number("%.4f", s.tilt_deg), number("%.3f", s.azimuth_deg),
+               number("%.3f", s.elevation_deg), number("%.4f", s.relative_scale),
+               std::to_string(s.num_failures), std::to_string(s.num_gross),
+               number("%.0f", s.median_inliers), number("%.2f", s.mean_time_ms),
+               number("%.3f", s.trajectory.ate_rmse_m)});
   }
 }
 

@@ -71,7 +71,14 @@ struct MethodSummary {
 std::vector<MethodSummary> Summarize(const KittiSequence& sequence,
                                      const std::vector<PoseRecord>& records);
 
-void PrintSummaryTable(const std::vector<MethodSummary>& summaries, std::ostream& out);
+enum class TableFormat { kText, kMarkdown };
+
+// One row per summary: medians (rotation, translation, yaw, tilt, signed azimuth / elevation, deg;
+// |log s|), failures, gross errors, inliers, mean time per triplet (ms) and ATE (m); fixed-width
+// text or a markdown table.
+void PrintSummaryTable(const std::vector<MethodSummary>& summaries,
+                       std::ostream& out,
+                       TableFormat format = TableFormat::kText);
 
 // CSVs (header row, comma-separated); false if the file cannot be written.
 bool WritePoseRecordsCsv(const std::string& path, const std::vector<PoseRecord>& records);

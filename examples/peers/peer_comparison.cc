@@ -6,20 +6,25 @@
 //       1.5 px threshold, f = 500 px (time: median over problems of the median over repetitions,
 //       one thread),
 //   (c) accuracy at 1 px: scenes of 100 triplets with 30 % outliers, trigrav raw and refined
-//       (InitializeAndRefine) against each peer (on --threads threads; no times reported).
+//       (InitializeAndRefine) against each peer (on --threads threads; no times reported),
+//   (d) with --kitti_dir (built with OpenCV's features2d): the KITTI evaluation of kitti_triplets
+//       (examples/kitti/sequence_evaluation.h, the same flags and defaults: sequence 00, frames
+//       0-299, 1.5 px) with every peer as a method (time: mean per triplet on --threads threads).
 // Each comparison is also printed as ratios trigrav / peer (< 1: trigrav faster or more accurate).
 // Tables are markdown.
 //
-//   peer_comparison                       # the README's run
+//   peer_comparison --kitti_dir=../shared/data/kitti   # the README's run
 //   peer_comparison --solver_problems=100 --robust_repetitions=1 --accuracy_scenes=10  # smoke test
 
 #include <gflags/gflags.h>
 #include <time.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iostream>
 #include <functional>
 #include <limits>
 #include <random>
@@ -33,6 +38,11 @@
 #include "robust_benchmark_problems.h"
 #include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/synthetic_scene.h"
+#ifdef TRIGRAV_PEER_COMPARISON_WITH_KITTI
+#include "kitti_flags.h"
+#include "peer_methods.h"
+#include "sequence_evaluation.h"
+#endif
 
 DEFINE_int32(solver_problems, 1000, "(a) Noise-free problems for the minimal solvers.");
 DEFINE_int32(solver_passes, 21, "(a) Timed passes over the problems; the median pass counts.");
@@ -49,7 +59,10 @@ DEFINE_double(accuracy_noise_px, 1.0, "(c) Image noise sigma in pixels.");
 DEFINE_double(accuracy_outlier_ratio, 0.3, "(c) Fraction of outlier triplets.");
 DEFINE_double(accuracy_threshold_px, 3.0, "(c) Inlier threshold in pixels (3 sigma).");
 DEFINE_uint64(seed, 1, "Seed of the (a) and (c) scenes (the same scenes for every estimator).");
-DEFINE_int32(threads, 2, "(c) Worker threads; (a) and (b) always time on one thread.");
+DEFINE_int32(threads, 2, "(c), (d) Worker threads; (a) and (b) always time on one thread.");
+DEFINE_uint64(kitti_seed, 1, "(d) RANSAC seed: triplet f uses kitti_seed + f (kitti_triplets' --seed).");
+// (d)'s dataset, frame range, cache, RANSAC and refinement flags (--kitti_dir, --sequence, ...,
+// --threshold_px) are kitti_triplets' own: examples/kitti/kitti_flags.cc.
 
 namespace {
 
@@ -370,6 +383,59 @@ void RunAccuracy() {
       });
 }
 
+#ifdef TRIGRAV_PEER_COMPARISON_WITH_KITTI
+// ---------------------------------------------------------------------------------------------
+// (d) KITTI: kitti_triplets' evaluation with the peers as methods.
+
+void RunKitti() {
+  namespace kitti = trigrav::kitti;
+  const kitti::KittiSequence sequence = kitti::LoadSequenceFromFlags();
+  std::vector<kitti::Method> methods = kitti::TrigravMethodsFromFlags();
+  const std::size_t num_trigrav_methods = methods.size();
+  kitti::AppendPeerMethods(kitti::ThresholdPxFlag(), &methods);
+  const std::string load_before = LoadAverage();
+  kitti::SequenceEvaluation evaluation;
+  std::string error;
+  const bool evaluated = kitti::EvaluateSequence(
+      sequence, methods,
+      kitti::EvaluationOptionsFromFlags(kitti::CacheDirFromFlags(""), FLAGS_kitti_seed,
+                                        FLAGS_threads),
+      &evaluation, &error);
+  trigrav::examples::RequireFlag(evaluated, error);
+  std::printf("\n## (d) KITTI\n\n");
+  kitti::PrintEvaluationHeader(sequence);
+  std::printf(
+      "\nSIFT triplets of consecutive frames, every method in RANSAC at the threshold above, "
+      "views 2 and 3 pooled: medians (deg) of rotation, translation direction, yaw and tilt parts "
+      "of the rotation, signed azimuth / elevation of the translation; failures; gross (> 10 deg "
+      "translation or failed); ATE (m) of the chained trajectory. ms/trip: mean wall time per "
+      "triplet inside %d worker threads (a refined stage includes its RANSAC); load average %s "
+      "before, %s after. SIFT, matching and every method: %.0f s wall.\n\n",
+      FLAGS_threads, load_before.c_str(), LoadAverage().c_str(),
+      evaluation.features_wall_s + evaluation.triplets_wall_s);
+  kitti::PrintSummaryTable(evaluation.summaries, std::cout, kitti::TableFormat::kMarkdown);
+
+  std::vector<const kitti::MethodSummary*> rows, columns;
+  for (const kitti::MethodSummary& s : evaluation.summaries) {
+    const bool is_trigrav =
+        std::any_of(methods.begin(), methods.begin() + num_trigrav_methods,
+                    [&](const kitti::Method& m) { return m.name == s.method; });
+    (is_trigrav ? rows : columns).push_back(&s);
+  }
+  const auto names = [](const std::vector<const kitti::MethodSummary*>& summaries) {
+    std::vector<std::string> names;
+    for (const kitti::MethodSummary* s : summaries) names.push_back(s->method + " " + s->stage);
+    return names;
+  };
+  PrintRatios("Ratios trigrav / peer: time per triplet / rotation error / translation error:",
+              names(rows), names(columns), [&](std::size_t r, std::size_t c) {
+                return Format("%.2f / %.2f / %.2f", rows[r]->mean_time_ms / columns[c]->mean_time_ms,
+                              rows[r]->rotation_deg / columns[c]->rotation_deg,
+                              rows[r]->translation_deg / columns[c]->translation_deg);
+              });
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -389,6 +455,10 @@ int main(int argc, char** argv) {
   RequireFlag(FLAGS_accuracy_threshold_px > 0.0 && std::isfinite(FLAGS_accuracy_threshold_px),
               "--accuracy_threshold_px must be positive and finite");
   RequireFlag(FLAGS_threads > 0, "--threads must be positive");
+#ifdef TRIGRAV_PEER_COMPARISON_WITH_KITTI
+  const bool with_kitti = !trigrav::kitti::KittiDirFlag().empty();
+  if (with_kitti) trigrav::kitti::ValidateKittiFlags(/*output_dir=*/"");
+#endif
   trigrav::peers::RunPeersSingleThreaded();
 
   const double start = NowSeconds();
@@ -402,6 +472,9 @@ int main(int argc, char** argv) {
   RunMinimalSolvers();
   RunRobust();
   RunAccuracy();
+#ifdef TRIGRAV_PEER_COMPARISON_WITH_KITTI
+  if (with_kitti) RunKitti();
+#endif
   std::printf("\nTotal run time %.0f s.\n", NowSeconds() - start);
   return 0;
 }

@@ -1,11 +1,20 @@
 // Time per call of the minimal solvers on pre-generated noise-free scenes (aligned rays, so only the
 // solver is timed). Counter "found" = fraction of the scenes whose best-ranked solution is within
-// 1e-6 deg of the truth. Run: ./build/examples/solver_benchmark
+// 1e-6 deg of the truth. Built with a peer library (examples/peers/), it also times OpenGV's
+// five-point solvers (BM_Peer/<name>) on the same kind of scenes; their counter "truth_found" is the
+// fraction of scenes with the true essential matrix among the solutions (they return essential
+// matrices, not poses). Run: ./build/examples/solver_benchmark
 
+#include <algorithm>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <benchmark/benchmark.h>
+
+#ifdef TRIGRAV_WITH_PEERS
+#include "peer_estimators.h"
+#endif
 
 #include "trigrav/initializers/essential_5pt.h"
 #include "trigrav/initializers/essential_8pt.h"
@@ -176,6 +185,40 @@ void BM_TrifocalLinear(benchmark::State& state) {
 }
 BENCHMARK(BM_TrifocalLinear)->Arg(7)->Arg(20);
 
+#ifdef TRIGRAV_WITH_PEERS
+// One benchmark per peer minimal solver, on 100 scenes of 5 triplets (seed 2026, like the others).
+void RegisterPeerBenchmarks() {
+  static const std::vector<trigrav::peers::MinimalProblem> problems =
+      trigrav::peers::MakeMinimalProblems(100, 2026);
+  for (const trigrav::peers::NamedMinimalSolver& solver : trigrav::peers::PeerMinimalSolvers()) {
+    std::string name = "BM_Peer/" + solver.name;  // "BM_Peer/opengv_fivept_stewenius"
+    std::replace(name.begin(), name.end(), ' ', '_');
+    benchmark::RegisterBenchmark(name.c_str(),
+                                 [solver](benchmark::State& state) {
+                                   const trigrav::peers::PreparedMinimalSolver prepared =
+                                       solver.prepare(problems);
+                                   int found = 0;
+                                   for (std::size_t i = 0; i < problems.size(); ++i)
+                                     found += prepared.truth_found(i);
+                                   std::size_t i = 0;
+                                   for (auto _ : state)
+                                     benchmark::DoNotOptimize(prepared.solve(i++ % problems.size()));
+                                   state.counters["truth_found"] =
+                                       static_cast<double>(found) / problems.size();
+                                 });
+  }
+}
+#endif
+
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+#ifdef TRIGRAV_WITH_PEERS
+  RegisterPeerBenchmarks();
+#endif
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -136,20 +136,6 @@ void PrintDescriptions(const std::vector<NamedEstimator>& estimators) {
 // ---------------------------------------------------------------------------------------------
 // (a) Minimal solvers.
 
-std::vector<MinimalProblem> MakeMinimalProblems() {
-  std::mt19937_64 rng(FLAGS_seed);
-  trigrav::SyntheticSceneOptions options;
-  options.num_points = 5;
-  std::vector<MinimalProblem> problems;
-  for (int i = 0; i < FLAGS_solver_problems; ++i) {
-    const trigrav::SyntheticScene scene = trigrav::GenerateSyntheticScene(options, &rng);
-    problems.push_back({scene.rays[0], scene.rays[1], scene.rays[2],
-                        scene.gravity_in_cam_measured[0], scene.gravity_in_cam_measured[1],
-                        scene.gravity_in_cam_measured[2], scene.ground_truth});
-  }
-  return problems;
-}
-
 struct SolverTiming {
   double cpu_ns_per_call = 0.0;  // medians over the passes
   double wall_ns_per_call = 0.0;
@@ -195,7 +181,8 @@ void RunMinimalSolvers() {
   const std::vector<NamedMinimalSolver> peer_solvers = trigrav::peers::PeerMinimalSolvers();
   std::vector<NamedMinimalSolver> all = trigrav_solvers;
   all.insert(all.end(), peer_solvers.begin(), peer_solvers.end());
-  const std::vector<MinimalProblem> problems = MakeMinimalProblems();
+  const std::vector<MinimalProblem> problems =
+      trigrav::peers::MakeMinimalProblems(FLAGS_solver_problems, FLAGS_seed);
   const std::string load_before = LoadAverage();
   const std::vector<SolverTiming> timings = TimeMinimalSolvers(all, problems);
   std::printf(

@@ -1,6 +1,9 @@
 #include "peer_estimators.h"
 
+#include <random>
+
 #include "peer_backends.h"
+#include "trigrav/initializers/synthetic_scene.h"
 
 namespace trigrav::peers {
 
@@ -19,6 +22,20 @@ std::vector<NamedEstimator> PeerEstimators() {
   for (NamedEstimator& entry : OpenGvEstimators()) estimators.push_back(std::move(entry));
 #endif
   return estimators;
+}
+
+std::vector<MinimalProblem> MakeMinimalProblems(int count, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  SyntheticSceneOptions options;
+  options.num_points = 5;
+  std::vector<MinimalProblem> problems;
+  for (int i = 0; i < count; ++i) {
+    const SyntheticScene scene = GenerateSyntheticScene(options, &rng);
+    problems.push_back({scene.rays[0], scene.rays[1], scene.rays[2],
+                        scene.gravity_in_cam_measured[0], scene.gravity_in_cam_measured[1],
+                        scene.gravity_in_cam_measured[2], scene.ground_truth});
+  }
+  return problems;
 }
 
 std::vector<NamedMinimalSolver> PeerMinimalSolvers() {

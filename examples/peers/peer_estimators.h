@@ -8,6 +8,7 @@
 // trigrav entries do not depend on them.
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -61,6 +62,10 @@ struct MinimalProblem {
   Eigen::Vector3d gravity_in_cam1, gravity_in_cam2, gravity_in_cam3;
   ThreeViewPose ground_truth;
 };
+
+// `count` noise-free problems of 5 triplets from SyntheticSceneOptions' defaults (f = 500 px, exact
+// gravity), drawn one after the other from one generator seeded with `seed`.
+std::vector<MinimalProblem> MakeMinimalProblems(int count, std::uint64_t seed);
 
 // A minimal solver prepared for a list of problems: solve(i) runs one call on problem i and returns
 // the number of solutions; truth_found(i) runs it again and says whether the true pose is among

@@ -12,7 +12,11 @@
 //               adjustment
 //               ("+ransac+ba"), both from one InitializeAndRefine call, threshold 3 px x
 //               max(1, sigma / 1 px); yaw-only refinement without IMU noise, gravity prior with
-//               sigma = the IMU noise otherwise.
+//               sigma = the IMU noise otherwise. Built with OpenCV / OpenGV (examples/peers) and
+//               --peers, one more column per peer (opencv-ransac, opengv-ransac-nister, ...): its
+//               five-point RANSAC on pairs (1,2), (1,3) on the same observations at the same
+//               threshold (in its own distance; the descriptions printed at start say which). Peers
+//               get no gravity, so the IMU noise levels do not reach them.
 // The first three use the paper's sample sizes (minimal: 3, 3, 4, 7, 5, 8 triplets); every method
 // sees the same scenes. Two-view methods (8pt, 5pt) solve pairs (1,2) and (1,3) and are made
 // three-view with the view-1 depth ratio (CombineTwoViewPairs); among their combinations, and
@@ -22,7 +26,8 @@
 // the relative-scale error |log(s_est / s_gt)|, s = |C3| / |C2|. One CSV per experiment in
 // --output_dir; plot with examples/plot_paper_experiments.py.
 //
-//   paper_experiments --output_dir=paper            # the full protocol (about 4 min on 2 cores)
+//   paper_experiments --output_dir=paper            # the full protocol (about 5 min on 2 cores)
+//   paper_experiments --peers=false ...             # without the peer columns (about 4 min)
 //   paper_experiments --quick --output_dir=quick    # a smoke test (seconds)
 
 #include <gflags/gflags.h>
@@ -59,12 +64,23 @@
 #include "trigrav/initializers/trifocal_linear.h"
 #include "trigrav/initializers/two_view_to_three_view.h"
 
+#ifdef TRIGRAV_WITH_PEERS
+#include "peer_estimators.h"
+constexpr bool kBuiltWithPeers = true;
+#else
+constexpr bool kBuiltWithPeers = false;
+#endif
+
 DEFINE_string(output_dir, "paper_experiments", "Folder for the CSV files (created if missing).");
 DEFINE_bool(quick, false, "Few trials per setting: a smoke test for ctest.");
 DEFINE_int32(threads, 2, "Worker threads (the timing experiment always runs on one).");
 DEFINE_double(trials, 1.0, "Scale of every trial count (1 = the paper's 5000 / 1000).");
 DEFINE_uint64(seed, 1, "Seed of the scenes (the same scenes for every method).");
 DEFINE_int32(sample20_triplets, 20, "Triplets per scene in the equal-sample-size experiment.");
+DEFINE_bool(peers,
+            kBuiltWithPeers,
+            "sample20: one more column per OpenCV / OpenGV five-point RANSAC (needs a build with "
+            "them; default: on if built with them).");
 
 namespace {
 
@@ -190,6 +206,36 @@ const std::vector<InitialSolver>& RansacSolvers() {
   return solvers;
 }
 
+// sample20's peer columns (--peers): a peer's robust estimate from the observations, without
+// gravity, at an inlier threshold in pixels (examples/peers/peer_estimators.h).
+struct Peer {
+  std::string name, description;
+  std::function<bool(const trigrav::ThreeViewObservations&, double threshold_px, ThreeViewPose*)>
+      estimate;
+};
+
+const std::vector<Peer>& Peers() {
+  static const std::vector<Peer> peers = [] {
+    std::vector<Peer> list;
+#ifdef TRIGRAV_WITH_PEERS
+    if (!FLAGS_peers) return list;
+    trigrav::peers::RunPeersSingleThreaded();  // the worker threads are ours
+    for (trigrav::peers::NamedEstimator& peer : trigrav::peers::PeerEstimators()) {
+      list.push_back(
+          {peer.name, peer.description,
+           [estimate = std::move(peer.estimate)](const trigrav::ThreeViewObservations& observations,
+                                                 double threshold_px, ThreeViewPose* pose) {
+             const trigrav::peers::EstimatorResult result = estimate(observations, threshold_px);
+             *pose = result.pose;
+             return result.success;
+           }});
+    }
+#endif
+    return list;
+  }();
+  return peers;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Experiments: a list of levels, each run in chunks of trials on the worker threads.
 
@@ -244,6 +290,7 @@ std::vector<std::string> ColumnNames(Experiment experiment) {
       names.push_back(std::string(trigrav::InitialSolverName(s)) + "+ransac");
       names.push_back(std::string(trigrav::InitialSolverName(s)) + "+ransac+ba");
     }
+    for (const Peer& peer : Peers()) names.push_back(peer.name);
   } else {
     for (const DirectMethod& m : DirectMethods()) names.push_back(m.name);
   }
@@ -276,10 +323,11 @@ std::vector<Errors> RunChunk(const Level& level, int trials, std::uint64_t seed)
     }
     const trigrav::ThreeViewObservations observations = trigrav::ToObservations(scene);
     const double imu_deg = std::max(level.pitch_deg, level.roll_deg);
+    const double threshold_px = 3.0 * std::max(1.0, level.noise_px);
     for (std::size_t s = 0; s < RansacSolvers().size(); ++s) {
       trigrav::InitializeAndRefineOptions options;
       options.solver = RansacSolvers()[s];
-      options.inlier_threshold_px = 3.0 * std::max(1.0, level.noise_px);
+      options.inlier_threshold_px = threshold_px;
       options.refine = true;
       options.seed = seed + trial;
       if (imu_deg > 0.0) {
@@ -292,6 +340,11 @@ std::vector<Errors> RunChunk(const Level& level, int trials, std::uint64_t seed)
           trigrav::InitializeAndRefine(observations, options);
       errors[2 * s].Add(scene, estimate.success, estimate.initial);
       errors[2 * s + 1].Add(scene, estimate.success && estimate.refinement_ran, estimate.refined);
+    }
+    for (std::size_t p = 0; p < Peers().size(); ++p) {
+      ThreeViewPose pose;
+      const bool ok = Peers()[p].estimate(observations, threshold_px, &pose);
+      errors[2 * RansacSolvers().size() + p].Add(scene, ok, pose);
     }
   }
   return errors;
@@ -507,12 +560,17 @@ int main(int argc, char** argv) {
   // Up to 100 x the paper's trial counts (500000 scenes per level) keeps every count an int.
   RequireFlag(FLAGS_trials > 0.0 && FLAGS_trials <= 100.0, "--trials must be in (0, 100]");
   RequireFlag(FLAGS_sample20_triplets >= 8, "--sample20_triplets must be >= 8");
+  RequireFlag(!FLAGS_peers || kBuiltWithPeers, "--peers: built without OpenCV and OpenGV");
   // Checked before the run, so that a bad folder fails at once, not after the experiments.
   ::mkdir(FLAGS_output_dir.c_str(), 0755);
   struct stat folder;
   RequireFlag(::stat(FLAGS_output_dir.c_str(), &folder) == 0 && S_ISDIR(folder.st_mode) &&
                   ::access(FLAGS_output_dir.c_str(), W_OK) == 0,
               "cannot create or write --output_dir=" + FLAGS_output_dir);
+  for (const Peer& peer : Peers()) {
+    std::fprintf(stderr, "sample20 peer %s (no gravity): %s\n", peer.name.c_str(),
+                 peer.description.c_str());
+  }
   const auto start = std::chrono::steady_clock::now();
 
   // Work items: chunks of trials of every level, each with its own seed.

@@ -91,7 +91,8 @@ def plot_imu(folder, out):
 
 def plot_sample20(folder, out):
     rows = read(folder, "sample20")
-    solvers = list(dict.fromkeys(r["method"].split("+")[0] for r in rows))
+    # trigrav's solvers only: the optional peer rows (opencv-*, opengv-*) are not plotted.
+    solvers = [s for s in dict.fromkeys(r["method"].split("+")[0] for r in rows) if s in STYLE]
     methods, labels, styles = [], {}, {}
     for solver in solvers:
         for suffix, dash in [("+ransac", "--"), ("+ransac+ba", "-")]:

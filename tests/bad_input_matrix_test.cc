@@ -188,6 +188,7 @@ enum Field : unsigned {
   kBundleOptions = 1u << 16,
   kBundleConfig = 1u << 17,
   kTrifocal4ptOptions = 1u << 18,
+  kTiltCorrection = 1u << 19,  // RobustThreeViewOptions::max_tilt_correction_deg
 };
 constexpr unsigned kRays = kRays1 | kRays2 | kRays3;
 constexpr unsigned kSizes = kSize1 | kSize2 | kSize3;
@@ -336,6 +337,7 @@ Result RunRobust(const Input& in) {
   RobustThreeViewOptions options;
   options.solver = in.solver;
   options.ransac = in.ransac;
+  options.max_tilt_correction_deg = in.max_tilt_correction_deg;
   const RobustThreeViewEstimate estimate = EstimateThreeViewPoseRobust(in.observations, options);
   if (estimate.success && estimate.inliers.size() != in.observations.size()) {
     return Broken("inlier mask of the wrong size");
@@ -464,7 +466,7 @@ std::vector<EntryPoint> EntryPoints() {
   for (const InitialSolver solver : kAllSolvers) {
     add(static_cast<Ep>(eps.size()),
         std::string("EstimateThreeViewPoseRobust (") + InitialSolverName(solver) + ")", 30,
-        MinimalSampleSize(solver), robust_reads, UseSolver(solver), RunRobust);
+        MinimalSampleSize(solver), robust_reads | kTiltCorrection, UseSolver(solver), RunRobust);
   }
   const unsigned refine_reads = robust_reads | kRefineOptions | kBundleOptions;
   add(kRefine3ptYawOnly, "InitializeAndRefine (3pt, yaw-only)", 30, 3, refine_reads,
@@ -696,6 +698,16 @@ void AddOptionCases(std::vector<Case>* cases) {
   for (Case& c : *cases) {
     if (c.name.rfind("RansacOptions::max_error", 0) == 0) c.overrides.push_back({kRefine, kTruth});
   }
+  for (const auto& [name, value] : {std::pair<const char*, double>{"NaN", kNaN}, {"-1", -1.0},
+                                     {"90", 90.0}, {"+Inf", kInf}}) {
+    cases->push_back(MakeCase(group, std::string("max_tilt_correction_deg = ") + name,
+                              kTiltCorrection, kThrows,
+                              "RobustThreeViewOptions: max_tilt_correction_deg",
+                              [value = value](Input* in) { in->max_tilt_correction_deg = value; }));
+  }
+  // A valid bound: noise-free data with exact gravity keep their true pose.
+  cases->push_back(MakeCase("valid options", "max_tilt_correction_deg = 0.5", kTiltCorrection,
+                            kTruth, "", [](Input* in) { in->max_tilt_correction_deg = 0.5; }));
   using IO = InitializeAndRefineOptions;
   AddOptionCases<IO>(
       cases, group, kRefineOptions, "InitializeAndRefineOptions: ",

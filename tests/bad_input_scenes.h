@@ -62,6 +62,7 @@ struct Input {
   bool null_output = false;                 // pass nullptr as the output
   InitialSolver solver = InitialSolver::kTrifocal3pt;
   RansacOptions ransac;               // EstimateThreeViewPoseRobust; InitializeAndRefine copies it
+  double max_tilt_correction_deg = 0.0;  // EstimateThreeViewPoseRobust (RobustThreeViewOptions)
   InitializeAndRefineOptions refine;  // its ransac and bundle_adjustment come from the fields here
   ThreeViewBundleAdjustmentOptions bundle;
   ThreeViewBundleAdjustmentConfig bundle_config;

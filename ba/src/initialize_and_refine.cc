@@ -10,6 +10,13 @@
 namespace trigrav {
 namespace {
 
+// With pitch and roll errors N(0, sigma^2) per camera, the relative tilt of two cameras has the
+// Rayleigh distribution of scale sqrt(2) sigma: it exceeds 4 sqrt(2) sigma with probability
+// exp(-8) = 3e-4.
+constexpr double kTiltCorrectionSigmas = 4.0;
+// A sigma of degrees says the gravity is hardly known; the correction stays a tilt, below 90 deg.
+constexpr double kMaxTiltCorrectionDeg = 45.0;
+
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -43,6 +50,12 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
   robust.ransac = options.ransac;
   robust.ransac.max_error = options.inlier_threshold_px;
   robust.ransac.seed = options.seed;
+  if (options.bundle_adjustment.rotation_model ==
+      ThreeViewBundleAdjustmentOptions::RotationModel::kGravityPrior) {
+    robust.max_tilt_correction_deg =
+        std::min(kTiltCorrectionSigmas * std::sqrt(2.0) * options.bundle_adjustment.gravity_sigma_deg,
+                 kMaxTiltCorrectionDeg);
+  }
   const RobustThreeViewEstimate ransac = EstimateThreeViewPoseRobust(observations, robust);
   estimate.ransac_time_s = SecondsSince(start);
   estimate.ransac_iterations = ransac.iterations;

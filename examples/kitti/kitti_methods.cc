@@ -43,9 +43,8 @@ Method MakeMethod(InitialSolver solver, bool refine, const TrigravMethodSettings
       poses.push_back(RefinedStage(kGravityPriorStage, yaw_only));
       return poses;
     }
-    // Same seed, so the same RANSAC estimate, refined with the other rotation model.
-    // InitializeAndRefine has no entry point that starts from a given estimate, so this RANSAC
-    // runs a second time.
+    // Same seed, other rotation model. Its RANSAC differs from the yaw-only one: with the
+    // gravity-prior model the local optimisation frees the tilt (initialize_and_refine.h).
     run_options.bundle_adjustment.rotation_model = RotationModel::kGravityPrior;
     poses.push_back(
         RefinedStage(kGravityPriorStage, InitializeAndRefine(observations, run_options)));

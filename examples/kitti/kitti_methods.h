@@ -50,7 +50,8 @@ struct TrigravMethodSettings {
 // trigrav's robust estimator (robust_three_view.h) for each named InitialSolver ("8pt", "5pt",
 // "7pt-linear", "3pt", "3pt-sextic", "4pt"), in the given order: stage "raw" is the RANSAC
 // estimate; for the refined methods, "yaw-only" and "gravity-prior" are InitializeAndRefine
-// (initialize_and_refine.h) with that rotation model (the same seed, so the same RANSAC estimate).
+// (initialize_and_refine.h) with that rotation model and the same seed; the gravity-prior RANSAC
+// frees the tilt in its local optimisation.
 // Returns false with a message for an unknown name.
 bool MakeTrigravMethods(const std::vector<std::string>& names,
                         const TrigravMethodSettings& settings,

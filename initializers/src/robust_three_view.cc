@@ -2,9 +2,11 @@
 
 #include <array>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
 #include <Eigen/SVD>
 
 #include "solver_utils.h"
@@ -26,7 +28,9 @@ using ViewRays = std::array<Rays, 3>;
 // What every method's estimator shares: the rays of each view, raw (K^-1 pixel) and gravity-aligned,
 // and the common inlier error.
 struct TripletData {
-  explicit TripletData(const ThreeViewObservations& observations) : error(observations) {
+  TripletData(const ThreeViewObservations& observations, double max_tilt_correction_deg)
+      : min_cos_tilt_correction(std::cos(max_tilt_correction_deg * M_PI / 180.0)),
+        error(observations) {
     for (int k = 0; k < 3; ++k) {
       alignment[k] = GravityAlignmentFromGravity(observations.gravity_in_cam[k]);
       raw[k].reserve(observations.size());
@@ -38,6 +42,7 @@ struct TripletData {
   }
   ViewRays raw, aligned;
   std::array<Eigen::Matrix3d, 3> alignment;
+  double min_cos_tilt_correction;  // cos(RobustThreeViewOptions::max_tilt_correction_deg)
   ThreeViewReprojectionError error;
 };
 
@@ -45,6 +50,7 @@ struct TripletData {
 struct Workspace {
   std::vector<ThreeViewPose> three_view;
   std::vector<CameraPose> pair12, pair13;
+  ViewRays corrected;  // tilt-corrected aligned rays (TiltCorrectingRefinement)
 };
 
 // Three-view models of a two-view method (math note section 7): CombineTwoViewPairs
@@ -115,6 +121,47 @@ using Method5pt =
     Method<5, false, SolveTwoViewPairs<SolveEssential5pt>, 8, SolveTwoViewPairs<SolveEssential8pt>>;
 using Method8pt =
     Method<8, false, SolveTwoViewPairs<SolveEssential8pt>, 8, SolveTwoViewPairs<SolveEssential8pt>>;
+
+// Local optimisation of a gravity-aware method that may correct the given relative tilt
+// (RobustThreeViewOptions::max_tilt_correction_deg): the linear trifocal tensor of the inliers'
+// aligned rays gives camera 1's vertical as seen by cameras 2 and 3, R_k1 e_y; if it is within the
+// bound of e_y, view k's aligned rays are turned by the tilt S_k taking R_k1 e_y to e_y. The upright
+// 4-point solver then re-estimates yaw and translation on the corrected rays, and the pose is
+// unaligned with the corrected alignments S_k A_k. The tensor, whose 26 unknowns make it noisy,
+// contributes only the tilt (2 numbers per camera); yaw and translation come from the 4-point
+// solver, as with exact gravity. (trigrav's own design; the paper assumes exact gravity.)
+template <typename M>
+struct TiltCorrectingRefinement : M {
+  static_assert(M::kAligned, "only gravity-aware methods have a tilt to correct");
+  static constexpr int kMinTripletsToRefine = 7;  // the linear tensor's minimum
+  static void Refine(const TripletData& data, const ViewRays& aligned, Workspace* work,
+                     std::vector<ThreeViewPose>* poses) {
+    std::array<Eigen::Matrix3d, 3> alignment = data.alignment;
+    std::array<const Rays*, 3> rays = {&aligned[0], &aligned[1], &aligned[2]};
+    SolveTrifocalLinear(aligned[0], aligned[1], aligned[2], &work->three_view);
+    if (!work->three_view.empty()) {
+      const ThreeViewPose& tensor = work->three_view.front();
+      const std::array<const Eigen::Matrix3d*, 2> rotation = {&tensor.cam2_from_cam1.R,
+                                                              &tensor.cam3_from_cam1.R};
+      for (int k = 1; k < 3; ++k) {
+        const Eigen::Vector3d vertical = *rotation[k - 1] * Eigen::Vector3d::UnitY();
+        if (!(vertical.y() >= data.min_cos_tilt_correction)) continue;  // beyond the bound
+        const Eigen::Matrix3d tilt =
+            Eigen::Quaterniond::FromTwoVectors(vertical, Eigen::Vector3d::UnitY()).toRotationMatrix();
+        work->corrected[k].resize(aligned[k].size());
+        for (std::size_t i = 0; i < aligned[k].size(); ++i) {
+          work->corrected[k][i] = tilt * aligned[k][i];
+        }
+        rays[k] = &work->corrected[k];
+        alignment[k] = tilt * alignment[k];
+      }
+    }
+    SolveTrifocal4pt(*rays[0], *rays[1], *rays[2], &work->three_view);
+    for (const ThreeViewPose& pose : work->three_view) {
+      poses->push_back(UnalignThreeViewPose(pose, alignment[0], alignment[1], alignment[2]));
+    }
+  }
+};
 
 struct ScoredPose {
   ThreeViewPose pose;
@@ -249,11 +296,16 @@ struct SolverInfo {
   const char* name;
   int sample_size;
   RunFunction run;
+  RunFunction run_tilt_correcting;  // == run for the methods that do not use gravity
 };
 
 template <typename M>
 constexpr SolverInfo MakeSolverInfo(InitialSolver solver, const char* name) {
-  return {solver, name, M::kSampleSize, &Run<M>};
+  if constexpr (M::kAligned) {
+    return {solver, name, M::kSampleSize, &Run<M>, &Run<TiltCorrectingRefinement<M>>};
+  } else {
+    return {solver, name, M::kSampleSize, &Run<M>, &Run<M>};
+  }
 }
 
 constexpr std::array<SolverInfo, 6> kSolvers = {{
@@ -290,9 +342,17 @@ bool ParseInitialSolver(const std::string& name, InitialSolver* solver) {
 
 RobustThreeViewEstimate EstimateThreeViewPoseRobust(const ThreeViewObservations& observations,
                                                     const RobustThreeViewOptions& options) {
-  const TripletData data(observations);  // its ThreeViewReprojectionError checks the observations
   options.ransac.Check();
-  RobustThreeViewEstimate estimate = Info(options.solver).run(data, options.ransac);
+  if (!(options.max_tilt_correction_deg >= 0.0 && options.max_tilt_correction_deg < 90.0)) {
+    throw std::invalid_argument(
+        "trigrav: RobustThreeViewOptions: max_tilt_correction_deg must be in [0, 90)");
+  }
+  // Its ThreeViewReprojectionError checks the observations.
+  const TripletData data(observations, options.max_tilt_correction_deg);
+  const SolverInfo& info = Info(options.solver);
+  const RunFunction run =
+      options.max_tilt_correction_deg > 0.0 ? info.run_tilt_correcting : info.run;
+  RobustThreeViewEstimate estimate = run(data, options.ransac);
   if (estimate.success) RejectWithoutParallax(observations, data, options.ransac.max_error, &estimate);
   return estimate;
 }

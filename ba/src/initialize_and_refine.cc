@@ -50,8 +50,9 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
   robust.ransac = options.ransac;
   robust.ransac.max_error = options.inlier_threshold_px;
   robust.ransac.seed = options.seed;
-  if (options.bundle_adjustment.rotation_model ==
-      ThreeViewBundleAdjustmentOptions::RotationModel::kGravityPrior) {
+  if (options.correct_tilt_in_ransac &&
+      options.bundle_adjustment.rotation_model ==
+          ThreeViewBundleAdjustmentOptions::RotationModel::kGravityPrior) {
     robust.max_tilt_correction_deg =
         std::min(kTiltCorrectionSigmas * std::sqrt(2.0) * options.bundle_adjustment.gravity_sigma_deg,
                  kMaxTiltCorrectionDeg);

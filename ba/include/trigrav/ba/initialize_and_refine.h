@@ -27,12 +27,14 @@ struct InitializeAndRefineOptions {
   // and, if the inlier set changed, the refinement is run again from the refined pose, up to this
   // many times. Recovers inliers a noisy minimal model missed.
   int reclassification_rounds = 1;
-  // RANSAC settings other than max_error and seed. With the gravity-prior rotation model, which
-  // declares the gravity uncertain, the RANSAC's local optimisation may correct the relative tilt
-  // by up to 4 sqrt(2) gravity_sigma_deg, at most 45 deg (RobustThreeViewOptions::
-  // max_tilt_correction_deg; the relative tilt of two cameras exceeds that bound with probability
-  // 3e-4); with yaw-only every RANSAC model stays upright.
+  // RANSAC settings other than max_error and seed.
   RansacOptions ransac;
+  // With the gravity-prior rotation model, which declares the gravity uncertain: RANSAC's local
+  // optimisation may correct the relative tilt by up to 4 sqrt(2) gravity_sigma_deg, at most
+  // 45 deg (RobustThreeViewOptions::max_tilt_correction_deg; the relative tilt of two cameras
+  // exceeds that bound with probability 3e-4). false keeps every RANSAC model upright, as in the
+  // paper. With yaw-only, every RANSAC model is upright either way.
+  bool correct_tilt_in_ransac = true;
   // Rotation model, loss and its scale, gravity sigma, iterations, threads, linear solver.
   ThreeViewBundleAdjustmentOptions bundle_adjustment;
 

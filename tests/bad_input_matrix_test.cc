@@ -223,6 +223,7 @@ enum Ep : int {
   kRobust8pt,
   kRefine3ptYawOnly,
   kRefine5ptGravityPrior,
+  kRefine3ptGravityPrior,  // its RANSAC corrects the tilt (correct_tilt_in_ransac)
   kBundleYawOnly,
   kBundleGravityPrior,
 };
@@ -242,7 +243,7 @@ const EpSet kTrifocalSolvers = EpRange(k4ptAligned, k3ptSexticGravity);
 const EpSet kMinimalSolvers = EpRange(k4ptAligned, kTrifocalLinear) & ~Eps({k4ptGravity20});
 const EpSet kExactCountSolvers = EpRange(k3ptAligned, kEssential5pt);
 const EpSet kRobust = EpRange(kRobust3pt, kRobust8pt);
-const EpSet kRefine = Eps({kRefine3ptYawOnly, kRefine5ptGravityPrior});
+const EpSet kRefine = Eps({kRefine3ptYawOnly, kRefine5ptGravityPrior, kRefine3ptGravityPrior});
 const EpSet kBundle = Eps({kBundleYawOnly, kBundleGravityPrior});
 
 struct EntryPoint {
@@ -475,6 +476,13 @@ std::vector<EntryPoint> EntryPoints() {
       kRefine5ptGravityPrior, "InitializeAndRefine (5pt, gravity prior)", 30, 5, refine_reads,
       [](Input* in) {
         in->solver = InitialSolver::kEssential5pt;
+        in->bundle.rotation_model = RM::kGravityPrior;
+      },
+      RunRefine);
+  add(
+      kRefine3ptGravityPrior, "InitializeAndRefine (3pt, gravity prior)", 30, 3, refine_reads,
+      [](Input* in) {
+        in->solver = InitialSolver::kTrifocal3pt;
         in->bundle.rotation_model = RM::kGravityPrior;
       },
       RunRefine);
@@ -823,7 +831,8 @@ void AddGeometryCases(std::vector<Case>* cases) {
   }
   // Entry points that evaluate the pose handed in (the truth) rather than estimate one.
   const EpSet evaluators = Eps({kCombinePairs, kTriangulate, kReprojectionError}) | kBundle;
-  const EpSet decoupled_3pt = Eps({k3ptAligned, k3ptGravity, kRobust3pt, kRefine3ptYawOnly});
+  const EpSet decoupled_3pt =
+      Eps({k3ptAligned, k3ptGravity, kRobust3pt, kRefine3ptYawOnly, kRefine3ptGravityPrior});
   add(degenerate, "duplicate triplet", Geometry::kDuplicateTriplet, kTruth,
       {{kMinimalSolvers, kNone}});
   add(degenerate, "all points identical", Geometry::kAllPointsIdentical, kNone,
@@ -841,8 +850,8 @@ void AddGeometryCases(std::vector<Case>* cases) {
   // of a camera without baseline is void, and pair (1,3) has no epipole, so the other methods have
   // no unique answer.
   add(degenerate, "zero baseline, camera 3", Geometry::kZeroBaseline3, kDegenerate,
-      {{Eps({kRobust3pt, kRefine3ptYawOnly, kRefine5ptGravityPrior, kEssential5pt, kEssential8pt,
-             kTriangulate, kReprojectionError}) |
+      {{Eps({kRobust3pt, kRefine3ptYawOnly, kRefine5ptGravityPrior, kRefine3ptGravityPrior,
+             kEssential5pt, kEssential8pt, kTriangulate, kReprojectionError}) |
             kBundle,
         kTruth},
        {Eps({kCombinePairs}), kNone}});

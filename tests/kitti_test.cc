@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -245,6 +246,44 @@ TEST_F(KittiRealData, ThreePointErrorsAreSane) {
   EXPECT_EQ(summaries[0].stage, kRawStage);
   EXPECT_LT(summaries[0].tilt_deg, 1e-6);
   EXPECT_NEAR(summaries[0].yaw_deg, summaries[0].rotation_deg, 1e-6);
+}
+
+// The same triplets with 0.1 deg of IMU noise on each frame's pitch and roll (the README's
+// --imu_noise_deg=0.1): upright estimates inherit the IMU's tilt error, and the gravity-prior
+// refinement, whose RANSAC corrects the tilt, wins it back.
+TEST_F(KittiRealData, GravityPriorWinsBackImuNoise) {
+  const std::vector<Eigen::Vector3d> imu_gravity = ImuGravityInCameras(sequence_, 0.1, 1);
+  TrigravMethodSettings settings;
+  settings.ransac.max_error = 1.5;
+  settings.ransac.min_iterations = 100;
+  settings.refined_methods = {"3pt"};
+  settings.bundle_adjustment.gravity_sigma_deg = 0.1;
+  std::vector<Method> methods;
+  std::string error;
+  ASSERT_TRUE(MakeTrigravMethods({"3pt"}, settings, &methods, &error)) << error;
+  std::vector<PoseRecord> records;
+  for (const TripletData& triplet : triplets_) {
+    const int i = triplet.frame - kFirstFrame;
+    ThreeViewObservations observations = triplet.observations;
+    for (int k = 0; k < 3; ++k) observations.gravity_in_cam[k] = imu_gravity[i + k];
+    for (const MethodPose& pose : methods[0].run(observations, triplet.frame)) {
+      records.push_back(EvaluatePose(triplet.frame, "3pt", pose, triplet.tracks.size(),
+                                     sequence_.GroundTruthTriplet(triplet.frame), gravity_[i + 1],
+                                     gravity_[i + 2]));
+    }
+  }
+  const std::vector<MethodSummary> summaries = Summarize(sequence_, records);
+  ASSERT_EQ(summaries.size(), 3u);  // raw, yaw-only, gravity-prior
+  for (const MethodSummary& s : summaries) {
+    std::printf("0.1 deg IMU, 3pt %s: rotation %.4f (tilt %.4f), translation %.3f deg, %d gross\n",
+                s.stage.c_str(), s.rotation_deg, s.tilt_deg, s.translation_deg, s.num_gross);
+  }
+  EXPECT_EQ(summaries[2].stage, kGravityPriorStage);
+  EXPECT_GT(summaries[0].tilt_deg, 0.05);  // raw: the IMU's relative tilt error
+  EXPECT_EQ(summaries[2].num_gross, 0);
+  EXPECT_LT(summaries[2].rotation_deg, 0.08);
+  EXPECT_LT(summaries[2].tilt_deg, 0.5 * summaries[0].tilt_deg);
+  EXPECT_LT(summaries[2].translation_deg, 3.0);
 }
 
 }  // namespace

@@ -43,7 +43,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
-#include <functional>
 #include <limits>
 #include <numeric>
 #include <random>
@@ -64,8 +63,9 @@
 #include "trigrav/initializers/trifocal_linear.h"
 #include "trigrav/initializers/two_view_to_three_view.h"
 
+#include "peer_estimators.h"  // the estimator interface; the peers themselves are optional
+
 #ifdef TRIGRAV_WITH_PEERS
-#include "peer_estimators.h"
 constexpr bool kBuiltWithPeers = true;
 #else
 constexpr bool kBuiltWithPeers = false;
@@ -206,32 +206,17 @@ const std::vector<InitialSolver>& RansacSolvers() {
   return solvers;
 }
 
-// sample20's peer columns (--peers): a peer's robust estimate from the observations, without
-// gravity, at an inlier threshold in pixels (examples/peers/peer_estimators.h).
-struct Peer {
-  std::string name, description;
-  std::function<bool(const trigrav::ThreeViewObservations&, double threshold_px, ThreeViewPose*)>
-      estimate;
-};
-
-const std::vector<Peer>& Peers() {
-  static const std::vector<Peer> peers = [] {
-    std::vector<Peer> list;
+// sample20's peer columns (--peers): the OpenCV / OpenGV robust estimates, without gravity, at an
+// inlier threshold in pixels (examples/peers/peer_estimators.h); none when built without them.
+const std::vector<trigrav::peers::NamedEstimator>& Peers() {
+  static const std::vector<trigrav::peers::NamedEstimator> peers = [] {
 #ifdef TRIGRAV_WITH_PEERS
-    if (!FLAGS_peers) return list;
-    trigrav::peers::RunPeersSingleThreaded();  // the worker threads are ours
-    for (trigrav::peers::NamedEstimator& peer : trigrav::peers::PeerEstimators()) {
-      list.push_back(
-          {peer.name, peer.description,
-           [estimate = std::move(peer.estimate)](const trigrav::ThreeViewObservations& observations,
-                                                 double threshold_px, ThreeViewPose* pose) {
-             const trigrav::peers::EstimatorResult result = estimate(observations, threshold_px);
-             *pose = result.pose;
-             return result.success;
-           }});
+    if (FLAGS_peers) {
+      trigrav::peers::RunPeersSingleThreaded();  // the worker threads are ours
+      return trigrav::peers::PeerEstimators();
     }
 #endif
-    return list;
+    return std::vector<trigrav::peers::NamedEstimator>();
   }();
   return peers;
 }
@@ -290,7 +275,7 @@ std::vector<std::string> ColumnNames(Experiment experiment) {
       names.push_back(std::string(trigrav::InitialSolverName(s)) + "+ransac");
       names.push_back(std::string(trigrav::InitialSolverName(s)) + "+ransac+ba");
     }
-    for (const Peer& peer : Peers()) names.push_back(peer.name);
+    for (const trigrav::peers::NamedEstimator& peer : Peers()) names.push_back(peer.name);
   } else {
     for (const DirectMethod& m : DirectMethods()) names.push_back(m.name);
   }
@@ -343,9 +328,8 @@ std::vector<Errors> RunChunk(const Level& level, int trials, std::uint64_t seed)
       errors[2 * s + 1].Add(scene, estimate.success && estimate.refinement_ran, estimate.refined);
     }
     for (std::size_t p = 0; p < Peers().size(); ++p) {
-      ThreeViewPose pose;
-      const bool ok = Peers()[p].estimate(observations, threshold_px, &pose);
-      errors[2 * RansacSolvers().size() + p].Add(scene, ok, pose);
+      const trigrav::peers::EstimatorResult peer = Peers()[p].estimate(observations, threshold_px);
+      errors[2 * RansacSolvers().size() + p].Add(scene, peer.success, peer.pose);
     }
   }
   return errors;
@@ -568,7 +552,7 @@ int main(int argc, char** argv) {
   RequireFlag(::stat(FLAGS_output_dir.c_str(), &folder) == 0 && S_ISDIR(folder.st_mode) &&
                   ::access(FLAGS_output_dir.c_str(), W_OK) == 0,
               "cannot create or write --output_dir=" + FLAGS_output_dir);
-  for (const Peer& peer : Peers()) {
+  for (const trigrav::peers::NamedEstimator& peer : Peers()) {
     std::fprintf(stderr, "sample20 peer %s (no gravity): %s\n", peer.name.c_str(),
                  peer.description.c_str());
   }

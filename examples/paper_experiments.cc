@@ -320,7 +320,8 @@ std::vector<Errors> RunChunk(const Level& level, int trials, std::uint64_t seed)
             trigrav::ThreeViewBundleAdjustmentOptions::RotationModel::kGravityPrior;
         options.bundle_adjustment.gravity_sigma_deg = imu_deg;
         options.bundle_adjustment.pixel_sigma_px = std::max(level.noise_px, 0.1);
-        options.correct_tilt_in_ransac = false;  // the raw column is the paper's upright RANSAC
+        // Both columns start from the paper's upright RANSAC: "+ BA" refines the raw column.
+        options.correct_tilt_in_ransac = false;
       }
       const trigrav::ThreeViewEstimate estimate =
           trigrav::InitializeAndRefine(observations, options);

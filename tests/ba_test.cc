@@ -273,8 +273,8 @@ TEST(InitializeAndRefineTest, GravityPriorBeatsYawOnlyWithImuNoise) {
 }
 
 // KITTI-like driving with 0.1 deg of IMU noise, 1.5 px threshold: the gravity-prior model corrects
-// the tilt already in RANSAC (correct_tilt_in_ransac), so the refinement starts from the true motion
-// and wins the IMU's error back; from upright RANSAC models it often cannot.
+// the tilt already in RANSAC (correct_tilt_in_ransac), so the refinement starts from the true
+// motion and wins the IMU's error back; from upright RANSAC models it often cannot.
 TEST(InitializeAndRefineTest, GravityPriorWinsBackImuTiltOnDrivingTriplets) {
   InitializeAndRefineOptions options;
   options.inlier_threshold_px = 1.5;
@@ -292,13 +292,15 @@ TEST(InitializeAndRefineTest, GravityPriorWinsBackImuTiltOnDrivingTriplets) {
       options.seed = seed;
       const ThreeViewEstimate estimate = InitializeAndRefine(scene.observations, options);
       ASSERT_TRUE(estimate.success) << estimate.message;
-      const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(scene.ground_truth, estimate.refined);
+      const ThreeViewPoseErrors e =
+          ComputeThreeViewPoseErrors(scene.ground_truth, estimate.refined);
       rotation.push_back(e.MaxRotationDeg());
       gross += e.MaxTranslationDeg() > 10.0;
     }
-    std::printf("gravity prior, 0.1 deg IMU, 60 driving triplets, correct_tilt_in_ransac %d: %d with "
-                "translation error > 10 deg, median rotation error %.4f deg\n",
-                correct_tilt, gross, Median(rotation));
+    std::printf(
+        "gravity prior, 0.1 deg IMU, 60 driving triplets, correct_tilt_in_ransac %d: %d with "
+        "translation error > 10 deg, median rotation error %.4f deg\n",
+        correct_tilt, gross, Median(rotation));
     if (correct_tilt) {
       EXPECT_LE(gross, 8);
       EXPECT_LT(Median(rotation), 0.05);  // the IMU's relative tilt error alone is 0.14 deg

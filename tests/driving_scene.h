@@ -23,8 +23,8 @@ struct DrivingScene {
 
 // Straight driving as on KITTI: f = 719 px on 1241 x 376 images, camera k at (0.02 k, 0, k) m
 // yawed by 0.5 k deg, 300 triplets of points 5-80 m ahead with N(0, 0.5^2) pixel noise, 20 % of
-// them outliers (view 3 moved by 20-60 px). Each camera's gravity is tilted by pitch and roll
-// errors N(0, imu_sigma_deg^2), as from an IMU.
+// them outliers (view 3 moved 20-60 px right and 0-20 px down). Each camera's gravity is tilted
+// by pitch and roll errors N(0, imu_sigma_deg^2), as from an IMU.
 inline DrivingScene MakeDrivingScene(double imu_sigma_deg, std::uint64_t seed) {
   constexpr double kDegToRad = M_PI / 180.0;
   constexpr double f = 719.0, cx = 607.0, cy = 185.0, width = 1241.0, height = 376.0;
@@ -35,7 +35,8 @@ inline DrivingScene MakeDrivingScene(double imu_sigma_deg, std::uint64_t seed) {
   std::array<Eigen::Matrix3d, 3> cam_from_world;
   std::array<Eigen::Vector3d, 3> center;
   for (int k = 0; k < 3; ++k) {
-    cam_from_world[k] = Eigen::AngleAxisd(0.5 * k * kDegToRad, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    cam_from_world[k] =
+        Eigen::AngleAxisd(0.5 * k * kDegToRad, Eigen::Vector3d::UnitY()).toRotationMatrix();
     center[k] = Eigen::Vector3d(0.02 * k, 0.0, k);
     scene.observations.cameras[k] = {f, f, cx, cy};
     const Eigen::Matrix3d imu_error =
@@ -45,7 +46,8 @@ inline DrivingScene MakeDrivingScene(double imu_sigma_deg, std::uint64_t seed) {
     scene.observations.gravity_in_cam[k] = imu_error * cam_from_world[k] * Eigen::Vector3d::UnitY();
   }
   for (int k = 1; k < 3; ++k) {
-    CameraPose& pose = k == 1 ? scene.ground_truth.cam2_from_cam1 : scene.ground_truth.cam3_from_cam1;
+    CameraPose& pose =
+        k == 1 ? scene.ground_truth.cam2_from_cam1 : scene.ground_truth.cam3_from_cam1;
     pose.R = cam_from_world[k] * cam_from_world[0].transpose();
     pose.t = cam_from_world[k] * (center[0] - center[k]);
   }

@@ -156,12 +156,33 @@ class KittiRealData : public ::testing::Test {
     ASSERT_TRUE(load_error_.empty()) << load_error_;
   }
 
- public:
-  static const KittiSequence& Sequence() { return sequence_; }
-  static const std::vector<Eigen::Vector3d>& Gravity() { return gravity_; }
-  static const std::vector<TripletData>& Triplets() { return triplets_; }
+  // 3pt raw, yaw-only and gravity-prior summaries of the 8 triplets, each camera's gravity taken
+  // from `gravity_in_frames` (per frame of the range) and the prior's sigma `gravity_sigma_deg`.
+  // The errors are measured about the exact gravity.
+  static std::vector<MethodSummary> RunThreePoint(
+      const std::vector<Eigen::Vector3d>& gravity_in_frames, double gravity_sigma_deg) {
+    TrigravMethodSettings settings;
+    settings.ransac.max_error = 1.5;
+    settings.ransac.min_iterations = 100;
+    settings.refined_methods = {"3pt"};
+    settings.bundle_adjustment.gravity_sigma_deg = gravity_sigma_deg;
+    std::vector<Method> methods;
+    std::string error;
+    EXPECT_TRUE(MakeTrigravMethods({"3pt"}, settings, &methods, &error)) << error;
+    std::vector<PoseRecord> records;
+    for (const TripletData& triplet : triplets_) {
+      const int i = triplet.frame - kFirstFrame;
+      ThreeViewObservations observations = triplet.observations;
+      for (int k = 0; k < 3; ++k) observations.gravity_in_cam[k] = gravity_in_frames[i + k];
+      for (const MethodPose& pose : methods.at(0).run(observations, triplet.frame)) {
+        records.push_back(EvaluatePose(triplet.frame, "3pt", pose, triplet.tracks.size(),
+                                       sequence_.GroundTruthTriplet(triplet.frame), gravity_[i + 1],
+                                       gravity_[i + 2]));
+      }
+    }
+    return Summarize(sequence_, records);
+  }
 
- protected:
   static inline KittiSequence sequence_;
   static inline std::vector<Eigen::Vector3d> gravity_;
   static inline fs::path cache_dir_;
@@ -217,34 +238,6 @@ TEST_F(KittiRealData, FeatureCacheRoundTrips) {
   // A cache of another image (other byte size) is not used.
   FrameFeatures stale;
   EXPECT_FALSE(ReadFeatureCache(source.CachePath(kFirstFrame), 12345, &stale));
-}
-
-// 3pt raw, yaw-only and gravity-prior summaries of the 8 triplets, each camera's gravity taken from
-// `gravity_in_frames` (per frame of the range) and the prior's sigma `gravity_sigma_deg`. The errors
-// are measured about the exact gravity.
-std::vector<MethodSummary> RunThreePoint(const std::vector<Eigen::Vector3d>& gravity_in_frames,
-                                         double gravity_sigma_deg) {
-  TrigravMethodSettings settings;
-  settings.ransac.max_error = 1.5;
-  settings.ransac.min_iterations = 100;
-  settings.refined_methods = {"3pt"};
-  settings.bundle_adjustment.gravity_sigma_deg = gravity_sigma_deg;
-  std::vector<Method> methods;
-  std::string error;
-  EXPECT_TRUE(MakeTrigravMethods({"3pt"}, settings, &methods, &error)) << error;
-  std::vector<PoseRecord> records;
-  for (const TripletData& triplet : KittiRealData::Triplets()) {
-    const int i = triplet.frame - kFirstFrame;
-    ThreeViewObservations observations = triplet.observations;
-    for (int k = 0; k < 3; ++k) observations.gravity_in_cam[k] = gravity_in_frames[i + k];
-    for (const MethodPose& pose : methods.at(0).run(observations, triplet.frame)) {
-      records.push_back(EvaluatePose(triplet.frame, "3pt", pose, triplet.tracks.size(),
-                                     KittiRealData::Sequence().GroundTruthTriplet(triplet.frame),
-                                     KittiRealData::Gravity()[i + 1],
-                                     KittiRealData::Gravity()[i + 2]));
-    }
-  }
-  return Summarize(KittiRealData::Sequence(), records);
 }
 
 TEST_F(KittiRealData, ThreePointErrorsAreSane) {

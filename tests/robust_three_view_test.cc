@@ -168,12 +168,12 @@ TEST(RobustThreeView, RejectsEpipolarSlidingOutlierWhenDrivingStraight) {
   }
 }
 
-// Angle between camera 1's gravity carried into camera k by the estimate and camera k's given gravity.
+// Angle between camera 1's gravity carried into camera k by the estimate and camera k's given
+// gravity.
 double TiltChangeDeg(const ThreeViewObservations& observations, const CameraPose& camk_from_cam1,
                      int k) {
-  const Eigen::Vector3d carried = camk_from_cam1.R * observations.gravity_in_cam[0].normalized();
-  const double cos_angle = carried.dot(observations.gravity_in_cam[k].normalized());
-  return std::acos(std::min(1.0, cos_angle)) * 180.0 / M_PI;
+  return DirectionErrorDeg(observations.gravity_in_cam[k],
+                           camk_from_cam1.R * observations.gravity_in_cam[0]);
 }
 
 // 60 driving triplets with 0.1 deg of IMU noise on every camera's pitch and roll, 1.5 px threshold.
@@ -213,6 +213,30 @@ TEST(RobustThreeView, TiltCorrectionKeepsRansacOnTheTrueMotionWithImuGravity) {
   ASSERT_GE(gross_upright, 10) << "the scenes no longer show the upright failure";
   EXPECT_LE(gross_corrected, 4);
   EXPECT_LT(Median(rotation_corrected), 0.25);
+}
+
+// Below the linear tensor's 7 triplets there is no tilt to estimate: local optimisation with a
+// tilt bound is the upright one, so 6 noisy triplets give the same estimate with and without it.
+TEST(RobustThreeView, TiltCorrectionBelowSevenTripletsIsTheUprightRefinement) {
+  RobustThreeViewOptions options;
+  options.ransac.max_error = 3.0;
+  int refined = 0;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const ProblemWithOutliers problem = MakeProblem(6, 1.0, 0.0, seed);
+    options.ransac.seed = seed;
+    options.max_tilt_correction_deg = 0.0;
+    const RobustThreeViewEstimate upright =
+        EstimateThreeViewPoseRobust(problem.observations, options);
+    options.max_tilt_correction_deg = 1.0;
+    const RobustThreeViewEstimate bounded =
+        EstimateThreeViewPoseRobust(problem.observations, options);
+    ASSERT_TRUE(upright.success && bounded.success) << upright.message << bounded.message;
+    refined += upright.num_local_optimizations > 0;
+    EXPECT_EQ(bounded.num_local_optimizations, upright.num_local_optimizations) << "seed " << seed;
+    EXPECT_EQ(bounded.pose.cam2_from_cam1.R, upright.pose.cam2_from_cam1.R) << "seed " << seed;
+    EXPECT_EQ(bounded.pose.cam3_from_cam1.t, upright.pose.cam3_from_cam1.t) << "seed " << seed;
+  }
+  EXPECT_EQ(refined, 5);
 }
 
 TEST(RobustThreeView, MisuseThrowsAndHopelessInputFails) {

@@ -53,9 +53,9 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
   if (options.correct_tilt_in_ransac &&
       options.bundle_adjustment.rotation_model ==
           ThreeViewBundleAdjustmentOptions::RotationModel::kGravityPrior) {
-    robust.max_tilt_correction_deg =
-        std::min(kTiltCorrectionSigmas * std::sqrt(2.0) * options.bundle_adjustment.gravity_sigma_deg,
-                 kMaxTiltCorrectionDeg);
+    robust.max_tilt_correction_deg = std::min(
+        kTiltCorrectionSigmas * std::sqrt(2.0) * options.bundle_adjustment.gravity_sigma_deg,
+        kMaxTiltCorrectionDeg);
   }
   const RobustThreeViewEstimate ransac = EstimateThreeViewPoseRobust(observations, robust);
   estimate.ransac_time_s = SecondsSince(start);

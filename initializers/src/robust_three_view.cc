@@ -125,20 +125,24 @@ using Method8pt =
 // Local optimisation of a gravity-aware method that may correct the given relative tilt
 // (RobustThreeViewOptions::max_tilt_correction_deg): the linear trifocal tensor of the inliers'
 // aligned rays gives camera 1's vertical as seen by cameras 2 and 3, R_k1 e_y; if it is within the
-// bound of e_y, view k's aligned rays are turned by the tilt S_k taking R_k1 e_y to e_y. The upright
-// 4-point solver then re-estimates yaw and translation on the corrected rays, and the pose is
-// unaligned with the corrected alignments S_k A_k. The tensor, whose 26 unknowns make it noisy,
+// bound of e_y, view k's aligned rays are turned by the tilt S_k taking R_k1 e_y to e_y. The
+// upright 4-point solver then re-estimates yaw and translation on the corrected rays, and the pose
+// is unaligned with the corrected alignments S_k A_k. The tensor, whose 26 unknowns make it noisy,
 // contributes only the tilt (2 numbers per camera); yaw and translation come from the 4-point
-// solver, as with exact gravity. (trigrav's own design; the paper assumes exact gravity.)
+// solver, as with exact gravity. Below the tensor's 7 triplets, or when it has no solution, the
+// refinement is the upright one of M. (trigrav's own design; the paper assumes exact gravity.)
 template <typename M>
 struct TiltCorrectingRefinement : M {
   static_assert(M::kAligned, "only gravity-aware methods have a tilt to correct");
-  static constexpr int kMinTripletsToRefine = 7;  // the linear tensor's minimum
+  static constexpr std::size_t kMinTripletsForTensor = 7;  // SolveTrifocalLinear's minimum
   static void Refine(const TripletData& data, const ViewRays& aligned, Workspace* work,
                      std::vector<ThreeViewPose>* poses) {
     std::array<Eigen::Matrix3d, 3> alignment = data.alignment;
     std::array<const Rays*, 3> rays = {&aligned[0], &aligned[1], &aligned[2]};
-    SolveTrifocalLinear(aligned[0], aligned[1], aligned[2], &work->three_view);
+    work->three_view.clear();
+    if (aligned[0].size() >= kMinTripletsForTensor) {
+      SolveTrifocalLinear(aligned[0], aligned[1], aligned[2], &work->three_view);
+    }
     if (!work->three_view.empty()) {
       const ThreeViewPose& tensor = work->three_view.front();
       const std::array<const Eigen::Matrix3d*, 2> rotation = {&tensor.cam2_from_cam1.R,
@@ -147,7 +151,8 @@ struct TiltCorrectingRefinement : M {
         const Eigen::Vector3d vertical = *rotation[k - 1] * Eigen::Vector3d::UnitY();
         if (!(vertical.y() >= data.min_cos_tilt_correction)) continue;  // beyond the bound
         const Eigen::Matrix3d tilt =
-            Eigen::Quaterniond::FromTwoVectors(vertical, Eigen::Vector3d::UnitY()).toRotationMatrix();
+            Eigen::Quaterniond::FromTwoVectors(vertical, Eigen::Vector3d::UnitY())
+                .toRotationMatrix();
         work->corrected[k].resize(aligned[k].size());
         for (std::size_t i = 0; i < aligned[k].size(); ++i) {
           work->corrected[k][i] = tilt * aligned[k][i];

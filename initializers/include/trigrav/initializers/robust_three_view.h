@@ -38,12 +38,13 @@ struct RobustThreeViewOptions {
   // roll of cameras 2 and 3 relative to camera 1) that the given gravity implies, in degrees.
   // 0 (exact gravity): every model is upright, local optimisation included. > 0 (gravity from an
   // IMU): each local optimisation estimates the relative tilt from the inliers with the linear
-  // trifocal tensor, turns the rays of views 2 and 3 by it when it lies within this bound, and
-  // re-solves upright with the 4-point solver on the corrected rays. A relative tilt error e moves
-  // distant points by about f e pixels (0.14 deg at f = 719 px: 1.8 px); under a tight threshold
-  // every upright model of the true motion then loses its distant points, and RANSAC may prefer a
-  // wrong motion. The minimal models stay upright; the estimate carries the corrected tilt. No
-  // effect without ransac.local_optimization. Throws std::invalid_argument outside [0, 90).
+  // trifocal tensor (7 or more inliers), turns the rays of views 2 and 3 by it when it lies within
+  // this bound, and re-solves upright with the 4-point solver on the corrected rays. A relative
+  // tilt error e moves distant points by about f e pixels (0.14 deg at f = 719 px: 1.8 px); under a
+  // tight threshold every upright model of the true motion then loses its distant points, and
+  // RANSAC may prefer a wrong motion. The minimal models stay upright; the estimate carries the
+  // corrected tilt. No effect without ransac.local_optimization. Throws std::invalid_argument
+  // outside [0, 90).
   double max_tilt_correction_deg = 0.0;
 };
 

@@ -70,13 +70,12 @@ TEST(KittiTrajectory, ChainingExactTripletsReproducesTheDriveWithZeroAte) {
   const std::vector<CameraPose> chained = ChainTrajectory(truth[0], steps, lengths);
   ASSERT_EQ(chained.size(), 12u);
   std::vector<Eigen::Vector3d> centers;
+  // Frame 11 checks the last step, which comes from the last triplet's cam3_from_cam2.
   for (int f = 0; f < 12; ++f) {
     centers.push_back(chained[f].Center());
     EXPECT_LT((chained[f].Center() - truth[f].Center()).norm(), 1e-9) << f;
     EXPECT_LT(RotationErrorDeg(truth[f].R, chained[f].R), 1e-9) << f;
   }
-  // The last step comes from the last triplet's cam3_from_cam2.
-  EXPECT_LT((chained[11].Center() - truth[11].Center()).norm(), 1e-9);
   EXPECT_LT(ComputeAbsoluteTrajectoryError(centers, truth_centers).rmse_m, 1e-9);
 }
 

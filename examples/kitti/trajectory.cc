@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "kitti_sequence.h"
+
 namespace trigrav::kitti {
 namespace {
 
@@ -11,13 +13,6 @@ CameraPose Compose(const CameraPose& c_from_b, const CameraPose& b_from_a) {
   c_from_a.R = c_from_b.R * b_from_a.R;
   c_from_a.t = c_from_b.R * b_from_a.t + c_from_b.t;
   return c_from_a;
-}
-
-CameraPose Inverse(const CameraPose& b_from_a) {
-  CameraPose a_from_b;
-  a_from_b.R = b_from_a.R.transpose();
-  a_from_b.t = -a_from_b.R * b_from_a.t;
-  return a_from_b;
 }
 
 }  // namespace
@@ -31,7 +26,8 @@ TrajectorySteps StepsFromTriplets(const std::vector<ThreeViewPose>& triplets,
   }
   if (!triplets.empty()) {
     const ThreeViewPose& last = triplets.back();
-    steps.next_from_current.push_back(Compose(last.cam3_from_cam1, Inverse(last.cam2_from_cam1)));
+    // cam3_from_cam2, camera 1 playing the world.
+    steps.next_from_current.push_back(RelativePose(last.cam2_from_cam1, last.cam3_from_cam1));
     steps.valid.push_back(triplet_valid.back());
   }
   return steps;

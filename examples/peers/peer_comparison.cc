@@ -352,11 +352,11 @@ void RunAccuracy() {
 
   std::printf(
       "\n## (c) Accuracy: %d triplets, %.0f %% outliers, %g px\n\n%d scenes (seed %llu), "
-      "threshold %g px, f = 500 px; medians, views 2 and 3 pooled; \"+ba\": "
+      "threshold %g px, f = %g px; medians, views 2 and 3 pooled; \"+ba\": "
       "trigrav::InitializeAndRefine (yaw-only bundle adjustment).\n",
       FLAGS_accuracy_points, 100.0 * FLAGS_accuracy_outlier_ratio, FLAGS_accuracy_noise_px,
       FLAGS_accuracy_scenes, static_cast<unsigned long long>(FLAGS_seed + 1),
-      FLAGS_accuracy_threshold_px);
+      FLAGS_accuracy_threshold_px, options.focal_px);
   PrintErrorTable(all, errors, /*with_time=*/false);
   const std::size_t n = trigrav_estimators.size();
   PrintRatios(

@@ -80,6 +80,13 @@ def robust_seeds():
     scene = bytes([0, NOISE, 19]) + struct.pack(">I", 3) + edits(None)
     seeds.append(options + scene + bytes([1, 0, 0]) + special(3))
     seeds.append(options + scene + bytes([1, 0, 0]) + special(10))
+    # Gravity from an IMU (1 deg per camera) with the tilt-correcting local optimisation: 3pt,
+    # sextic and 4pt with max_tilt_correction_deg = 5 (the last byte), then a NaN bound (invalid).
+    for solver in range(3):
+        options = bytes([solver, 1, 1, 12, 65]) + struct.pack(">I", solver) + bytes([1, 4, 1])
+        scene = bytes([0, NOISE | OUTLIERS | IMU_NOISE, 29]) + struct.pack(">I", 500)
+        seeds.append(options + scene + edits(None) + bytes([0, 2]))
+    seeds.append(options + scene + edits(None) + bytes([0, 4]) + special(0))
     return seeds
 
 

@@ -4,9 +4,10 @@
 //
 // Input: the solver (one value in 8 is not a valid enumerator), the RANSAC options (mostly sane,
 // some decoded freely), then either a synthetic scene with outliers and edits (fuzz_scene.h) or raw
-// intrinsics, gravity and pixels, then edits of the intrinsics. Checked:
+// intrinsics, gravity and pixels, then edits of the intrinsics, and last max_tilt_correction_deg
+// (0 past the end of the input, so shorter inputs keep their meaning). Checked:
 //   - the only exception is std::invalid_argument, and only when the observations or the options
-//     fail their own Check() or the solver is not an enumerator;
+//     fail their own Check(), the tilt bound is outside [0, 90) or the solver is not an enumerator;
 //   - success: a finite pose, one inlier flag per triplet, num_inliers = the flags set (at least a
 //     minimal sample), iterations <= max_iterations; failure: a message.
 // Built as a libFuzzer target with Clang, and into a replay driver (replay_main.cc) for ctest.
@@ -85,6 +86,9 @@ ThreeViewObservations DecodeObservations(FuzzInput* input) {
 
 bool IsValid(const ThreeViewObservations& observations, const RobustThreeViewOptions& options) {
   if (static_cast<int>(options.solver) >= kNumSolvers) return false;
+  if (!(options.max_tilt_correction_deg >= 0.0 && options.max_tilt_correction_deg < 90.0)) {
+    return false;
+  }
   try {
     observations.Check();
     options.ransac.Check();
@@ -101,8 +105,9 @@ bool IsValid(const ThreeViewObservations& observations, const RobustThreeViewOpt
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace trigrav;  // NOLINT: the harness entry point must stay outside namespaces
   fuzz::FuzzInput input(data, size);
-  const RobustThreeViewOptions options = fuzz::DecodeOptions(&input);
+  RobustThreeViewOptions options = fuzz::DecodeOptions(&input);
   const ThreeViewObservations observations = fuzz::DecodeObservations(&input);
+  options.max_tilt_correction_deg = fuzz::Choose(&input, {0.0, 0.5, 5.0, 45.0});
   const bool valid = fuzz::IsValid(observations, options);
   RobustThreeViewEstimate estimate;
   try {

@@ -258,13 +258,19 @@ struct Errors {
     trials += other.trials;
     failures += other.failures;
   }
-  void Add(const trigrav::SyntheticScene& scene, bool ok, const ThreeViewPose& pose) {
+  // relative_scale_known: false when |C3| is a placeholder (a pairwise peer without common
+  // inliers); its relative-scale error then counts as +inf.
+  void Add(const trigrav::SyntheticScene& scene, bool ok, const ThreeViewPose& pose,
+           bool relative_scale_known = true) {
     ++trials;
     if (!ok || !pose.IsFinite()) {
       ++failures;
       return;
     }
-    pooled.Add(trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, pose));
+    trigrav::ThreeViewPoseErrors errors =
+        trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, pose);
+    if (!relative_scale_known) errors.relative_scale = std::numeric_limits<double>::infinity();
+    pooled.Add(errors);
   }
 };
 
@@ -330,7 +336,8 @@ std::vector<Errors> RunChunk(const Level& level, int trials, std::uint64_t seed)
     }
     for (std::size_t p = 0; p < Peers().size(); ++p) {
       const trigrav::peers::EstimatorResult peer = Peers()[p].estimate(observations, threshold_px);
-      errors[2 * RansacSolvers().size() + p].Add(scene, peer.success, peer.pose);
+      errors[2 * RansacSolvers().size() + p].Add(scene, peer.success, peer.pose,
+                                                 peer.relative_scale_known);
     }
   }
   return errors;

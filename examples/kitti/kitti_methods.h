@@ -29,6 +29,9 @@ struct MethodPose {
   ThreeViewPose pose;   // |cam2_from_cam1.Center()| = 1
   int num_inliers = 0;  // of the pose's own inlier set
   double time_s = 0.0;  // everything this pose needed (a refinement includes its RANSAC)
+  // False when |cam3_from_cam1.Center()| is a placeholder (a pairwise peer without common inliers):
+  // its relative-scale error then counts as +inf.
+  bool relative_scale_known = true;
 };
 
 struct Method {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <ostream>
 #include <utility>
@@ -68,6 +69,9 @@ PoseRecord EvaluatePose(int frame,
   record.pose = pose.pose;
   if (!record.success) return record;
   record.errors = ComputeThreeViewPoseErrors(ground_truth, pose.pose);
+  if (!pose.relative_scale_known) {
+    record.errors.relative_scale = std::numeric_limits<double>::infinity();
+  }
   record.split[0] = SplitRotationErrorDeg(ground_truth.cam2_from_cam1.R, pose.pose.cam2_from_cam1.R,
                                           gravity_in_cam2);
   record.split[1] = SplitRotationErrorDeg(ground_truth.cam3_from_cam1.R, pose.pose.cam3_from_cam1.R,

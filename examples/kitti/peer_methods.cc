@@ -12,7 +12,8 @@ void AppendPeerMethods(double threshold_px, std::vector<Method>* methods) {
                           const peers::EstimatorResult result =
                               peer.estimate(observations, threshold_px);
                           return std::vector<MethodPose>{{kRawStage, result.success, result.pose,
-                                                          result.num_inliers, result.time_s}};
+                                                          result.num_inliers, result.time_s,
+                                                          result.relative_scale_known}};
                         }});
   }
 }

@@ -22,8 +22,9 @@
 #include "pooled_errors.h"
 #include "require_flag.h"
 #include "trigrav/ba/initialize_and_refine.h"
-#include "trigrav/initializers/pose_metrics.h"
-#include "trigrav/initializers/synthetic_scene.h"
+#include "trigrav/evaluation/pose_errors.h"
+#include "trigrav/evaluation/statistics.h"
+#include "trigrav/evaluation/synthetic_scene.h"
 
 DEFINE_int32(trials, 50, "Scenes per setting.");
 DEFINE_int32(points, 100, "Triplets per scene.");

@@ -21,7 +21,7 @@
 #include "kitti_sequence.h"
 #include "sift_features.h"
 #include "trajectory.h"
-#include "trigrav/initializers/pose_metrics.h"
+#include "trigrav/evaluation/pose_errors.h"
 #include "triplet_source.h"
 
 namespace trigrav::kitti {

@@ -233,7 +233,6 @@ ThreeViewBundleAdjustmentSummary ThreeViewBundleAdjuster::Solve() {
   }
   out.num_points = static_cast<int>(points_.size());
   out.num_residual_blocks = problem_->NumResidualBlocks();
-  const ThreeViewPose before = CurrentPose();
   // Keep copies to restore on failure.
   double yaw_backup[2] = {yaw_[0], yaw_[1]};
   double quaternion_backup[2][4], center_backup[2][3];
@@ -255,21 +254,14 @@ ThreeViewBundleAdjustmentSummary ThreeViewBundleAdjuster::Solve() {
   std::string error;
   if (!solver_options.IsValid(&error)) {
     out.message = "invalid Ceres options: " + error;
-    out.pose = before;
     return out;
   }
-  ceres::Solver::Summary summary;
+  ceres::Solver::Summary& summary = out.ceres_summary;
   const auto start = std::chrono::steady_clock::now();
   ceres::Solve(solver_options, problem_.get(), &summary);
   out.solve_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  out.initial_cost = summary.initial_cost;
-  out.final_cost = summary.final_cost;
-  out.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
-  out.termination = summary.termination_type;
-  out.brief_report = summary.BriefReport();
-  out.pose = CurrentPose();
-  if (!summary.IsSolutionUsable() || !out.pose.IsFinite()) {
+  if (!summary.IsSolutionUsable() || !CurrentPose().IsFinite()) {
     out.message = "Ceres failed: " + summary.message;
     for (int j = 0; j < 2; ++j) {
       yaw_[j] = yaw_backup[j];
@@ -277,7 +269,6 @@ ThreeViewBundleAdjustmentSummary ThreeViewBundleAdjuster::Solve() {
       for (int i = 0; i < 3; ++i) center_[j][i] = center_backup[j][i];
     }
     points_ = points_backup;
-    out.pose = before;
     return out;
   }
   out.success = true;

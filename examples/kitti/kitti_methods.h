@@ -3,17 +3,18 @@
 
 // The methods compared on KITTI triplets, as a list of named entries. An entry takes a triplet's
 // observations and returns one or more poses ("stages": the RANSAC estimate and its refinements),
-// each with its success flag, inlier count and time. Other estimators (e.g. peers built on OpenCV
-// or OpenGV) are appended to the list without touching the evaluation.
+// each an estimate with its stage name and time. Other estimators (e.g. the peers of
+// examples/peers/, built on OpenCV or OpenGV) are appended to the list without touching the
+// evaluation.
 
 #include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
 
-#include "trigrav/ba/three_view_bundle_adjustment.h"
-#include "trigrav/initializers/camera_pose.h"
-#include "trigrav/initializers/ransac.h"
+#include "trigrav/ba/initialize_and_refine.h"
+#include "trigrav/initializers/initial_solver.h"
+#include "trigrav/initializers/robust_three_view.h"
 #include "trigrav/initializers/three_view_observations.h"
 
 namespace trigrav::kitti {
@@ -23,11 +24,12 @@ inline constexpr char kRawStage[] = "raw";
 inline constexpr char kYawOnlyStage[] = "yaw-only";
 inline constexpr char kGravityPriorStage[] = "gravity-prior";
 
-struct MethodPose {
-  std::string stage;  // kRawStage, kYawOnlyStage, kGravityPriorStage, or a peer's own name
-  bool success = false;
-  ThreeViewPose pose;   // |cam2_from_cam1.Center()| = 1
-  int num_inliers = 0;  // of the pose's own inlier set
+// One pose of a method on one triplet: the estimate (success, message, pose with
+// |cam2_from_cam1.Center()| = 1, the pose's own inliers; for a refined stage the refined pose and
+// the inliers the refinement used, ransac.num_inliers counting them and the other statistics those
+// of the RANSAC run it started from), its stage and its time.
+struct MethodPose : RobustThreeViewEstimate {
+  std::string stage;    // kRawStage, kYawOnlyStage, kGravityPriorStage, or a peer's own name
   double time_s = 0.0;  // everything this pose needed (a refinement includes its RANSAC)
   // False when |cam3_from_cam1.Center()| is a placeholder (a pairwise peer without common inliers):
   // its relative-scale error then counts as +inf.
@@ -40,26 +42,13 @@ struct Method {
   std::function<std::vector<MethodPose>(const ThreeViewObservations&, std::uint64_t seed)> run;
 };
 
-struct TrigravMethodSettings {
-  RansacOptions ransac;  // max_error is the one inlier threshold (pixels) of every method
-  // Methods (InitialSolverName) whose estimate is also refined, once per rotation model.
-  std::vector<std::string> refined_methods;
-  // Bundle adjustment: Huber scale, gravity sigma of the gravity-prior model, pixel sigma that
-  // weights the prior, re-classification rounds.
-  ThreeViewBundleAdjustmentOptions bundle_adjustment;
-  int reclassification_rounds = 1;
-};
-
-// trigrav's robust estimator (robust_three_view.h) for each named InitialSolver ("8pt", "5pt",
-// "7pt-linear", "3pt", "3pt-sextic", "4pt"), in the given order: stage "raw" is the RANSAC
-// estimate; for the refined methods, "yaw-only" and "gravity-prior" are InitializeAndRefine
-// (initialize_and_refine.h) with that rotation model and the same seed; the gravity-prior RANSAC
-// frees the tilt in its local optimisation.
-// Returns false with a message for an unknown name.
-bool MakeTrigravMethods(const std::vector<std::string>& names,
-                        const TrigravMethodSettings& settings,
-                        std::vector<Method>* methods,
-                        std::string* error);
+// trigrav's robust estimator with `solver` (InitialSolverName is the method's name) and the
+// settings of `options` (RANSAC, tilt correction, bundle adjustment, re-classification; the
+// solver, the seed and the rotation model are set per method, triplet and stage). Stage "raw" is
+// the RANSAC estimate; with `refine`, "yaw-only" and "gravity-prior" are InitializeAndRefine
+// (initialize_and_refine.h) with that rotation model and the same seed. The gravity-prior RANSAC
+// may correct the tilt in its local optimisation (options.robust.max_tilt_correction_deg).
+Method TrigravMethod(InitialSolver solver, bool refine, const InitializeAndRefineOptions& options);
 
 }  // namespace trigrav::kitti
 

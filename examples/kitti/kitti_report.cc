@@ -4,13 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <map>
 #include <ostream>
 #include <utility>
 
-#include "trajectory.h"
+#include "trigrav/evaluation/statistics.h"
+#include "trigrav/evaluation/trajectory.h"
 
 namespace trigrav::kitti {
 namespace {
@@ -44,6 +44,43 @@ TrajectoryResult EvaluateTrajectory(const KittiSequence& sequence,
 
 constexpr double kRadToDeg = 180.0 / M_PI;
 
+std::string Number(const char* format, double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+
+// rows[0] is the header. Text: columns separated by one space, each as wide as its widest cell,
+// the first `left_aligned_columns` left-aligned and the others right-aligned. Markdown: '|'
+// between the cells and a separator row after the header.
+void PrintTable(const std::vector<std::vector<std::string>>& rows,
+                std::size_t left_aligned_columns,
+                TableFormat format,
+                std::ostream& out) {
+  std::vector<std::size_t> widths;
+  for (const std::vector<std::string>& row : rows) {
+    widths.resize(std::max(widths.size(), row.size()), 0);
+    for (std::size_t c = 0; c < row.size(); ++c) widths[c] = std::max(widths[c], row[c].size());
+  }
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    for (std::size_t c = 0; c < rows[r].size(); ++c) {
+      const std::string& cell = rows[r][c];
+      if (format == TableFormat::kMarkdown) {
+        out << (c == 0 ? "| " : " | ") << cell;
+        continue;
+      }
+      const std::string padding(widths[c] - cell.size(), ' ');
+      out << (c == 0 ? "" : " ") << (c < left_aligned_columns ? cell + padding : padding + cell);
+    }
+    out << (format == TableFormat::kMarkdown ? " |\n" : "\n");
+    if (format == TableFormat::kMarkdown && r == 0) {
+      out << "|";
+      for (std::size_t c = 0; c < rows[0].size(); ++c) out << "---|";
+      out << "\n";
+    }
+  }
+}
+
 double AzimuthDeg(const Eigen::Vector3d& d) { return std::atan2(d.x(), d.z()) * kRadToDeg; }
 double ElevationDeg(const Eigen::Vector3d& d) {
   return std::atan2(-d.y(), std::hypot(d.x(), d.z())) * kRadToDeg;
@@ -64,7 +101,7 @@ PoseRecord EvaluatePose(int frame,
   record.stage = pose.stage;
   record.success = pose.success && pose.pose.IsFinite();
   record.num_tracks = num_tracks;
-  record.num_inliers = pose.num_inliers;
+  record.num_inliers = pose.ransac.num_inliers;
   record.time_s = pose.time_s;
   record.pose = pose.pose;
   if (!record.success) return record;
@@ -147,41 +184,41 @@ std::vector<MethodSummary> Summarize(const KittiSequence& sequence,
 void PrintSummaryTable(const std::vector<MethodSummary>& summaries,
                        std::ostream& out,
                        TableFormat format) {
-  // Column widths of the text format; the markdown format separates the same cells with '|'.
-  constexpr int kWidths[] = {-11, -13, 7, 6, 7, 7, 6, 6, 7, 4, 5, 7, 8, 6};
-  const auto print_row = [&](const std::vector<std::string>& cells) {
-    for (std::size_t c = 0; c < cells.size(); ++c) {
-      if (format == TableFormat::kMarkdown) {
-        out << (c == 0 ? "| " : " | ") << cells[c];
-      } else {
-        char cell[64];
-        std::snprintf(cell, sizeof(cell), "%*s", kWidths[c], cells[c].c_str());
-        out << (c == 0 ? "" : " ") << cell;
-      }
-    }
-    out << (format == TableFormat::kMarkdown ? " |\n" : "\n");
-  };
-  print_row({"method", "stage", "rot", "trans", "yaw", "tilt", "azim", "elev", "|log s|", "fail",
-             "gross", "inliers", "ms/trip", "ATE m"});
-  if (format == TableFormat::kMarkdown) {
-    out << "|";
-    for (std::size_t c = 0; c < std::size(kWidths); ++c) out << "---|";
-    out << "\n";
-  }
-  const auto number = [](const char* spec, double value) {
-    char text[32];
-    std::snprintf(text, sizeof(text), spec, value);
-    return std::string(text);
-  };
+  std::vector<std::vector<std::string>> rows = {{"method", "stage", "rot", "trans", "yaw", "tilt",
+                                                 "azim", "elev", "|log s|", "fail", "gross",
+                                                 "inliers", "ms/trip", "ATE m"}};
   for (const MethodSummary& s : summaries) {
-    print_row({s.method, s.stage, number("%.4f", s.rotation_deg),
-               number("%.3f", s.translation_deg), number("%.4f", s.yaw_deg),
-               number("%.4f", s.tilt_deg), number("%.3f", s.azimuth_deg),
-               number("%.3f", s.elevation_deg), number("%.4f", s.relative_scale),
-               std::to_string(s.num_failures), std::to_string(s.num_gross),
-               number("%.0f", s.median_inliers), number("%.2f", s.mean_time_ms),
-               number("%.3f", s.trajectory.ate_rmse_m)});
+    rows.push_back({s.method, s.stage, Number("%.4f", s.rotation_deg),
+                    Number("%.3f", s.translation_deg), Number("%.4f", s.yaw_deg),
+                    Number("%.4f", s.tilt_deg), Number("%.3f", s.azimuth_deg),
+                    Number("%.3f", s.elevation_deg), Number("%.4f", s.relative_scale),
+                    std::to_string(s.num_failures), std::to_string(s.num_gross),
+                    Number("%.0f", s.median_inliers), Number("%.2f", s.mean_time_ms),
+                    Number("%.3f", s.trajectory.ate_rmse_m)});
   }
+  PrintTable(rows, /*left_aligned_columns=*/2, format, out);
+}
+
+void PrintRatioTable(const std::vector<const MethodSummary*>& rows,
+                     const std::vector<const MethodSummary*>& columns,
+                     std::ostream& out,
+                     TableFormat format) {
+  std::vector<std::vector<std::string>> cells = {{"time / rot / trans"}};
+  for (const MethodSummary* column : columns) {
+    cells[0].push_back(column->method + " " + column->stage);
+  }
+  for (const MethodSummary* row : rows) {
+    cells.push_back({row->method + " " + row->stage});
+    for (const MethodSummary* column : columns) {
+      char cell[64];
+      std::snprintf(cell, sizeof(cell), "%.2f / %.2f / %.2f",
+                    row->mean_time_ms / column->mean_time_ms,
+                    row->rotation_deg / column->rotation_deg,
+                    row->translation_deg / column->translation_deg);
+      cells.back().push_back(cell);
+    }
+  }
+  PrintTable(cells, /*left_aligned_columns=*/1, format, out);
 }
 
 bool WritePoseRecordsCsv(const std::string& path, const std::vector<PoseRecord>& records) {

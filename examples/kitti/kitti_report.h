@@ -12,7 +12,7 @@
 
 #include "kitti_methods.h"
 #include "kitti_sequence.h"
-#include "trigrav/initializers/pose_metrics.h"
+#include "trigrav/evaluation/pose_errors.h"
 
 namespace trigrav::kitti {
 
@@ -21,7 +21,7 @@ struct PoseRecord {
   int frame = 0;
   std::string method, stage;
   bool success = false;
-  int num_tracks = 0, num_inliers = 0;
+  int num_tracks = 0, num_inliers = 0;  // inliers: the pose's own (MethodPose::ransac.num_inliers)
   double time_s = 0.0;
   ThreeViewPose pose;
   ThreeViewPoseErrors errors;  // views 2 and 3
@@ -46,7 +46,7 @@ PoseRecord EvaluatePose(int frame,
                         const Eigen::Vector3d& gravity_in_cam2,
                         const Eigen::Vector3d& gravity_in_cam3);
 
-// A method's poses chained into a trajectory (trajectory.h) and its ATE.
+// A method's poses chained into a trajectory (trigrav/evaluation/trajectory.h) and its ATE.
 struct TrajectoryResult {
   std::vector<Eigen::Vector3d> aligned_centers;  // per frame of the range, ground-truth world
   std::vector<double> error_m;                   // per frame, after alignment
@@ -79,6 +79,15 @@ enum class TableFormat { kText, kMarkdown };
 void PrintSummaryTable(const std::vector<MethodSummary>& summaries,
                        std::ostream& out,
                        TableFormat format = TableFormat::kText);
+
+// Ratios row / column of mean time per triplet, median rotation error and median translation error
+// ("time / rotation / translation"; below 1: the row is faster or more accurate), one row per
+// `rows` entry (e.g. trigrav's methods and stages) and one column per `columns` entry (e.g. the
+// peers).
+void PrintRatioTable(const std::vector<const MethodSummary*>& rows,
+                     const std::vector<const MethodSummary*>& columns,
+                     std::ostream& out,
+                     TableFormat format = TableFormat::kText);
 
 // CSVs (header row, comma-separated); false if the file cannot be written.
 bool WritePoseRecordsCsv(const std::string& path, const std::vector<PoseRecord>& records);

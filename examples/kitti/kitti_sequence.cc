@@ -80,8 +80,9 @@ bool ReadPoses(const fs::path& poses_path,
 
 ThreeViewPose KittiSequence::GroundTruthTriplet(int frame) const {
   ThreeViewPose pose;
-  pose.cam2_from_cam1 = RelativePose(CamFromWorld(frame), CamFromWorld(frame + 1));
-  pose.cam3_from_cam1 = RelativePose(CamFromWorld(frame), CamFromWorld(frame + 2));
+  const CameraPose world_from_cam1 = CamFromWorld(frame).Inverse();
+  pose.cam2_from_cam1 = CamFromWorld(frame + 1) * world_from_cam1;
+  pose.cam3_from_cam1 = CamFromWorld(frame + 2) * world_from_cam1;
   return pose;
 }
 
@@ -123,13 +124,6 @@ bool LoadKittiSequence(const std::string& kitti_dir,
   }
   *out = std::move(result);
   return true;
-}
-
-CameraPose RelativePose(const CameraPose& cam_a_from_world, const CameraPose& cam_b_from_world) {
-  CameraPose b_from_a;
-  b_from_a.R = cam_b_from_world.R * cam_a_from_world.R.transpose();
-  b_from_a.t = cam_b_from_world.t - b_from_a.R * cam_a_from_world.t;
-  return b_from_a;
 }
 
 std::vector<Eigen::Vector3d> ImuGravityInCameras(const KittiSequence& sequence,

@@ -30,8 +30,9 @@ struct KittiSequence {
   int num_frames() const { return last_frame - first_frame + 1; }
   const CameraPose& CamFromWorld(int frame) const { return cam_from_world[frame - first_frame]; }
   const std::string& ImagePath(int frame) const { return image_paths[frame - first_frame]; }
-  // Ground truth of the triplet (frame, frame + 1, frame + 2): cam2_from_cam1 = T_{f+1}^-1 T_f
-  // with T = world_from_cam, likewise cam3_from_cam1; metric translations.
+  // Ground truth of the triplet (frame, frame + 1, frame + 2): cam2_from_cam1 =
+  // CamFromWorld(frame + 1) * CamFromWorld(frame).Inverse(), likewise cam3_from_cam1; metric
+  // translations.
   ThreeViewPose GroundTruthTriplet(int frame) const;
 };
 
@@ -43,9 +44,6 @@ bool LoadKittiSequence(const std::string& kitti_dir,
                        int last_frame,
                        KittiSequence* out,
                        std::string* error);
-
-// b_from_a = cam_b_from_world * (cam_a_from_world)^-1.
-CameraPose RelativePose(const CameraPose& cam_a_from_world, const CameraPose& cam_b_from_world);
 
 // Gravity (down, unit) in each frame of the range as an IMU would report it. The world y axis is
 // taken as down, as the paper does on KITTI (the world frame, camera 0 of frame 0, is itself

@@ -11,9 +11,12 @@ void AppendPeerMethods(double threshold_px, std::vector<Method>* methods) {
                                                         std::uint64_t /*seed*/) {
                           const peers::EstimatorResult result =
                               peer.estimate(observations, threshold_px);
-                          return std::vector<MethodPose>{{kRawStage, result.success, result.pose,
-                                                          result.num_inliers, result.time_s,
-                                                          result.relative_scale_known}};
+                          MethodPose pose;
+                          static_cast<RobustThreeViewEstimate&>(pose) = result;
+                          pose.stage = peer.stage;
+                          pose.time_s = result.time_s;
+                          pose.relative_scale_known = result.relative_scale_known;
+                          return std::vector<MethodPose>{pose};
                         }});
   }
 }

@@ -7,7 +7,7 @@
 #include <mutex>
 #include <utility>
 
-#include "../parallel_for.h"
+#include "trigrav/evaluation/parallel_for.h"
 
 namespace trigrav::kitti {
 namespace {
@@ -78,7 +78,7 @@ bool EvaluateSequence(const KittiSequence& sequence,
     const TripletSource cache_filler(sequence, imu_gravity, options.cache_dir, options.sift,
                                      options.match);
     Progress progress(options.show_progress, "features (frames)", sequence.num_frames());
-    examples::ParallelFor(sequence.num_frames(), options.threads, [&](std::size_t i) {
+    ParallelFor(sequence.num_frames(), options.threads, [&](std::size_t i) {
       if (first_error.failed()) return;
       const auto start = std::chrono::steady_clock::now();
       bool detected = false;
@@ -102,7 +102,7 @@ bool EvaluateSequence(const KittiSequence& sequence,
   evaluation->triplets.resize(num_triplets);
   if (!first_error.failed()) {
     Progress progress(options.show_progress, "triplets", num_triplets);
-    examples::ParallelFor(num_chunks, options.threads, [&](std::size_t c) {
+    ParallelFor(num_chunks, options.threads, [&](std::size_t c) {
       TripletSource source(sequence, imu_gravity, options.cache_dir, options.sift, options.match);
       const int end = std::min(num_triplets, static_cast<int>(c + 1) * chunk);
       for (int t = static_cast<int>(c) * chunk; t < end && !first_error.failed(); ++t) {

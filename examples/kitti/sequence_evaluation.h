@@ -3,8 +3,7 @@
 
 // The paper's KITTI evaluation (Section IV-B) of a list of methods on every triplet (f, f+1, f+2)
 // of a frame range: features of every frame (cached), tracks, each method's poses against the
-// ground truth, per-method summaries with chained trajectories. Shared by kitti_triplets and
-// peer_comparison's KITTI section, so that both run exactly the same protocol.
+// ground truth, per-method summaries with chained trajectories.
 
 #include <cstdint>
 #include <string>

@@ -148,16 +148,19 @@ NamedMinimalSolver OpenGvMinimalSolver(
 std::vector<NamedEstimator> OpenGvEstimators() {
   return {
       {"opengv-ransac-stewenius",
+       "raw",
        "opengv::sac::Ransac<CentralRelativePoseSacProblem>(STEWENIUS) on pairs (1,2), (1,3), "
        "model as returned (no refinement); " +
            RansacNote(),
        PairwiseEstimator(OpenGvPair(SacProblem::STEWENIUS, /*refine=*/false))},
       {"opengv-ransac-nister",
+       "raw",
        "opengv::sac::Ransac<CentralRelativePoseSacProblem>(NISTER) on pairs (1,2), (1,3), model "
        "as returned (no refinement); " +
            RansacNote(),
        PairwiseEstimator(OpenGvPair(SacProblem::NISTER, /*refine=*/false))},
       {"opengv-ransac-nister+nl",
+       "raw",
        "opengv-ransac-nister, then optimizeModelCoefficients (opengv::relative_pose::"
        "optimize_nonlinear, Levenberg-Marquardt) on the RANSAC inliers; " +
            RansacNote(),

@@ -1,19 +1,18 @@
-// trigrav side by side with OpenCV's and OpenGV's five-point RANSAC (issue 8), in one run on the
-// same instances and with the same error metrics (trigrav::ComputeThreeViewPoseErrors: rotation and
+// trigrav side by side with OpenCV's and OpenGV's five-point RANSAC, in one run on the same
+// instances and with the same error metrics (trigrav::ComputeThreeViewPoseErrors: rotation and
 // camera-centre direction of views 2 and 3, pooled; a failed estimate counts as 180 deg):
 //   (a) minimal-solver time per call (noise-free scenes; median over timed passes, one thread),
 //   (b) robust estimates on robust_benchmark's problems: 500 triplets, 30 % outliers, 0.5 px noise,
 //       1.5 px threshold, f = 500 px (time: median over problems of the median over repetitions,
 //       one thread),
-//   (c) accuracy at 1 px: scenes of 100 triplets with 30 % outliers, trigrav raw and refined
-//       (InitializeAndRefine) against each peer (on --threads threads; no times reported),
-//   (d) with --kitti_dir (built with OpenCV's features2d): the KITTI evaluation of kitti_triplets
-//       (examples/kitti/sequence_evaluation.h, the same flags and defaults: sequence 00, frames
-//       0-299, 1.5 px) with every peer as a method (time: mean per triplet on --threads threads).
+//   (c) accuracy at 1 px: scenes of 100 triplets with 30 % outliers, every trigrav method raw and
+//       refined (InitializeAndRefine, yaw-only) against each peer (on --threads threads; no times
+//       reported).
 // Each comparison is also printed as ratios trigrav / peer (< 1: trigrav faster or more accurate).
-// Tables are markdown.
+// Tables are markdown. The KITTI rows of the peers come from kitti_triplets --peers
+// (examples/kitti/).
 //
-//   peer_comparison --kitti_dir=../shared/data/kitti   # the README's run
+//   peer_comparison   # the README's run
 //   peer_comparison --solver_problems=100 --robust_repetitions=1 --accuracy_scenes=10  # smoke test
 
 #include <gflags/gflags.h>
@@ -31,27 +30,23 @@
 #include <string>
 #include <vector>
 
-#include "parallel_for.h"
+#include "common/require_flag.h"
 #include "peer_estimators.h"
-#include "pooled_errors.h"
-#include "require_flag.h"
-#include "robust_benchmark_problems.h"
-#include "trigrav/initializers/pose_metrics.h"
-#include "trigrav/initializers/synthetic_scene.h"
-#ifdef TRIGRAV_PEER_COMPARISON_WITH_KITTI
-#include "kitti_flags.h"
-#include "peer_methods.h"
-#include "sequence_evaluation.h"
-#endif
+#include "trigrav/evaluation/parallel_for.h"
+#include "trigrav/evaluation/pooled_errors.h"
+#include "trigrav/evaluation/pose_errors.h"
+#include "trigrav/evaluation/robust_benchmark_scenes.h"
+#include "trigrav/evaluation/statistics.h"
+#include "trigrav/evaluation/synthetic_scene.h"
 
 DEFINE_int32(solver_problems, 1000, "(a) Noise-free problems for the minimal solvers.");
 DEFINE_int32(solver_passes, 21, "(a) Timed passes over the problems; the median pass counts.");
 DEFINE_int32(robust_problems,
-             trigrav::examples::kRobustBenchmarkProblems,
+             trigrav::kRobustBenchmarkScenes,
              "(b) Problems (the default: robust_benchmark's).");
 DEFINE_int32(robust_repetitions, 5, "(b) Timed runs of each estimate; the median counts.");
 DEFINE_uint64(robust_seed,
-              trigrav::examples::kRobustBenchmarkSeed,
+              trigrav::kRobustBenchmarkSeed,
               "(b) Seed of the problems (the default: robust_benchmark's).");
 DEFINE_int32(accuracy_scenes, 300, "(c) Scenes.");
 DEFINE_int32(accuracy_points, 100, "(c) Triplets per scene.");
@@ -59,10 +54,7 @@ DEFINE_double(accuracy_noise_px, 1.0, "(c) Image noise sigma in pixels.");
 DEFINE_double(accuracy_outlier_ratio, 0.3, "(c) Fraction of outlier triplets.");
 DEFINE_double(accuracy_threshold_px, 3.0, "(c) Inlier threshold in pixels (3 sigma).");
 DEFINE_uint64(seed, 1, "Seed of the (a) and (c) scenes (the same scenes for every estimator).");
-DEFINE_int32(threads, 2, "(c), (d) Worker threads; (a) and (b) always time on one thread.");
-DEFINE_uint64(kitti_seed, 1, "(d) RANSAC seed: triplet f uses kitti_seed + f (kitti_triplets' --seed).");
-// (d)'s dataset, frame range, cache, RANSAC and refinement flags (--kitti_dir, --sequence, ...,
-// --threshold_px) are kitti_triplets' own: examples/kitti/kitti_flags.cc.
+DEFINE_int32(threads, 2, "(c) Worker threads; (a) and (b) always time on one thread.");
 
 namespace {
 
@@ -122,15 +114,17 @@ std::string Format(const char* format, double a, double b = 0.0, double c = 0.0)
   return text;
 }
 
+// "<name> <stage>" of each estimator, e.g. "3pt yaw-only", "opencv-ransac raw".
 std::vector<std::string> Names(const std::vector<NamedEstimator>& estimators) {
   std::vector<std::string> names;
-  for (const NamedEstimator& e : estimators) names.push_back(e.name);
+  for (const NamedEstimator& e : estimators) names.push_back(e.name + " " + e.stage);
   return names;
 }
 
 void PrintDescriptions(const std::vector<NamedEstimator>& estimators) {
-  for (const NamedEstimator& e : estimators)
-    std::printf("- `%s`: %s\n", e.name.c_str(), e.description.c_str());
+  for (const NamedEstimator& e : estimators) {
+    std::printf("- `%s` %s: %s\n", e.name.c_str(), e.stage.c_str(), e.description.c_str());
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -193,7 +187,7 @@ void RunMinimalSolvers() {
       "public minimal-solver call.\n\n",
       FLAGS_solver_problems, FLAGS_solver_passes, load_before.c_str(), LoadAverage().c_str());
   std::printf(
-      "| solver | CPU ns per call | wall ns per call | solutions (mean) | truth found | one call "
+      "| method | CPU ns per call | wall ns per call | solutions (mean) | truth found | one call "
       "computes |\n|---|---|---|---|---|---|\n");
   for (std::size_t s = 0; s < all.size(); ++s) {
     std::printf("| %s | %.0f | %.0f | %.2f | %.1f %% | %s |\n", all[s].name.c_str(),
@@ -218,13 +212,13 @@ void RunMinimalSolvers() {
 
 struct Errors {
   // 180 deg and scale error +inf for a failure; scale error +inf when the scale is unknown.
-  trigrav::examples::PooledErrors pooled;
+  trigrav::PooledErrors pooled;
   std::vector<double> inliers;
   std::vector<double> cpu_seconds, wall_seconds;  // per problem, when timed
   int failures = 0;
 
   void Add(const trigrav::ThreeViewPose& truth, const EstimatorResult& result) {
-    inliers.push_back(result.num_inliers);
+    inliers.push_back(result.ransac.num_inliers);
     if (!result.success) {
       ++failures;
       pooled.AddFailure();
@@ -240,16 +234,16 @@ void PrintErrorTable(const std::vector<NamedEstimator>& estimators,
                      const std::vector<Errors>& errors,
                      bool with_time) {
   std::printf(
-      "\n| estimator |%s rotation (deg) | translation (deg) | \\|log scale\\| | inliers | "
-      "failures |\n|---|%s---|---|---|---|---|\n",
+      "\n| method | stage |%s rotation (deg) | translation (deg) | \\|log scale\\| | inliers | "
+      "failures |\n|---|---|%s---|---|---|---|---|\n",
       with_time ? " CPU ms per estimate | wall ms |" : "", with_time ? "---|---|" : "");
   for (std::size_t e = 0; e < estimators.size(); ++e) {
-    std::printf("| %s |", estimators[e].name.c_str());
+    std::printf("| %s | %s |", estimators[e].name.c_str(), estimators[e].stage.c_str());
     if (with_time) {
       std::printf(" %.2f | %.2f |", 1e3 * trigrav::Median(errors[e].cpu_seconds),
                   1e3 * trigrav::Median(errors[e].wall_seconds));
     }
-    const trigrav::examples::PooledErrors& pooled = errors[e].pooled;
+    const trigrav::PooledErrors& pooled = errors[e].pooled;
     std::printf(" %.4f | %.4f | %.4f | %.0f | %d |\n", trigrav::Median(pooled.rotation_deg),
                 trigrav::Median(pooled.translation_deg), trigrav::Median(pooled.relative_scale),
                 trigrav::Median(errors[e].inliers), errors[e].failures);
@@ -261,12 +255,12 @@ void PrintErrorTable(const std::vector<NamedEstimator>& estimators,
 
 void RunRobust() {
   const std::vector<trigrav::SyntheticScene> scenes =
-      trigrav::examples::RobustBenchmarkScenes(FLAGS_robust_problems, FLAGS_robust_seed);
+      trigrav::RobustBenchmarkScenes(FLAGS_robust_problems, FLAGS_robust_seed);
   std::vector<trigrav::ThreeViewObservations> observations;
   for (const trigrav::SyntheticScene& scene : scenes)
     observations.push_back(trigrav::ToObservations(scene));
-  const trigrav::SyntheticSceneOptions options = trigrav::examples::RobustBenchmarkSceneOptions();
-  constexpr double kThresholdPx = trigrav::examples::kRobustBenchmarkThresholdPx;
+  const trigrav::SyntheticSceneOptions options = trigrav::RobustBenchmarkSceneOptions();
+  constexpr double kThresholdPx = trigrav::kRobustBenchmarkThresholdPx;
   const std::vector<NamedEstimator> trigrav_estimators = trigrav::peers::TrigravRobustEstimators();
   const std::vector<NamedEstimator> peers = trigrav::peers::PeerEstimators();
   std::vector<NamedEstimator> all = trigrav_estimators;
@@ -339,7 +333,7 @@ void RunAccuracy() {
   all.insert(all.end(), peers.begin(), peers.end());
 
   std::vector<std::vector<EstimatorResult>> results(scenes.size());
-  trigrav::examples::ParallelFor(scenes.size(), FLAGS_threads, [&](std::size_t s) {
+  trigrav::ParallelFor(scenes.size(), FLAGS_threads, [&](std::size_t s) {
     const trigrav::ThreeViewObservations observations = trigrav::ToObservations(scenes[s]);
     for (const NamedEstimator& e : all)
       results[s].push_back(e.estimate(observations, FLAGS_accuracy_threshold_px));
@@ -352,7 +346,7 @@ void RunAccuracy() {
 
   std::printf(
       "\n## (c) Accuracy: %d triplets, %.0f %% outliers, %g px\n\n%d scenes (seed %llu), "
-      "threshold %g px, f = %g px; medians, views 2 and 3 pooled; \"+ba\": "
+      "threshold %g px, f = %g px; medians, views 2 and 3 pooled; stage \"yaw-only\": "
       "trigrav::InitializeAndRefine (yaw-only bundle adjustment).\n",
       FLAGS_accuracy_points, 100.0 * FLAGS_accuracy_outlier_ratio, FLAGS_accuracy_noise_px,
       FLAGS_accuracy_scenes, static_cast<unsigned long long>(FLAGS_seed + 1),
@@ -362,66 +356,14 @@ void RunAccuracy() {
   PrintRatios(
       "Ratios trigrav / peer: rotation error / translation error:", Names(trigrav_estimators),
       Names(peers), [&](std::size_t r, std::size_t c) {
-        const trigrav::examples::PooledErrors& a = errors[r].pooled;
-        const trigrav::examples::PooledErrors& b = errors[n + c].pooled;
+        const trigrav::PooledErrors& a = errors[r].pooled;
+        const trigrav::PooledErrors& b = errors[n + c].pooled;
         return Format("%.2f / %.2f",
                       trigrav::Median(a.rotation_deg) / trigrav::Median(b.rotation_deg),
                       trigrav::Median(a.translation_deg) / trigrav::Median(b.translation_deg));
       });
 }
 
-#ifdef TRIGRAV_PEER_COMPARISON_WITH_KITTI
-// ---------------------------------------------------------------------------------------------
-// (d) KITTI: kitti_triplets' evaluation with the peers as methods.
-
-void RunKitti() {
-  namespace kitti = trigrav::kitti;
-  const kitti::KittiSequence sequence = kitti::LoadSequenceFromFlags();
-  std::vector<kitti::Method> methods = kitti::TrigravMethodsFromFlags();
-  const std::size_t num_trigrav_methods = methods.size();
-  kitti::AppendPeerMethods(kitti::ThresholdPxFlag(), &methods);
-  const std::string load_before = LoadAverage();
-  kitti::SequenceEvaluation evaluation;
-  std::string error;
-  const bool evaluated = kitti::EvaluateSequence(
-      sequence, methods,
-      kitti::EvaluationOptionsFromFlags(kitti::CacheDirFromFlags(""), FLAGS_kitti_seed,
-                                        FLAGS_threads),
-      &evaluation, &error);
-  trigrav::examples::RequireFlag(evaluated, error);
-  std::printf("\n## (d) KITTI\n\n");
-  kitti::PrintEvaluationHeader(sequence);
-  std::printf(
-      "\nSIFT triplets of consecutive frames, every method in RANSAC at the threshold above, "
-      "views 2 and 3 pooled: medians (deg) of rotation, translation direction, yaw and tilt parts "
-      "of the rotation, signed azimuth / elevation of the translation; failures; gross (> 10 deg "
-      "translation or failed); ATE (m) of the chained trajectory. ms/trip: mean wall time per "
-      "triplet inside %d worker threads (a refined stage includes its RANSAC); load average %s "
-      "before, %s after. SIFT, matching and every method: %.0f s wall.\n\n",
-      FLAGS_threads, load_before.c_str(), LoadAverage().c_str(),
-      evaluation.features_wall_s + evaluation.triplets_wall_s);
-  kitti::PrintSummaryTable(evaluation.summaries, std::cout, kitti::TableFormat::kMarkdown);
-
-  std::vector<const kitti::MethodSummary*> rows, columns;
-  for (const kitti::MethodSummary& s : evaluation.summaries) {
-    const bool is_trigrav =
-        std::any_of(methods.begin(), methods.begin() + num_trigrav_methods,
-                    [&](const kitti::Method& m) { return m.name == s.method; });
-    (is_trigrav ? rows : columns).push_back(&s);
-  }
-  const auto names = [](const std::vector<const kitti::MethodSummary*>& summaries) {
-    std::vector<std::string> names;
-    for (const kitti::MethodSummary* s : summaries) names.push_back(s->method + " " + s->stage);
-    return names;
-  };
-  PrintRatios("Ratios trigrav / peer: time per triplet / rotation error / translation error:",
-              names(rows), names(columns), [&](std::size_t r, std::size_t c) {
-                return Format("%.2f / %.2f / %.2f", rows[r]->mean_time_ms / columns[c]->mean_time_ms,
-                              rows[r]->rotation_deg / columns[c]->rotation_deg,
-                              rows[r]->translation_deg / columns[c]->translation_deg);
-              });
-}
-#endif
 
 }  // namespace
 
@@ -442,10 +384,6 @@ int main(int argc, char** argv) {
   RequireFlag(FLAGS_accuracy_threshold_px > 0.0 && std::isfinite(FLAGS_accuracy_threshold_px),
               "--accuracy_threshold_px must be positive and finite");
   RequireFlag(FLAGS_threads > 0, "--threads must be positive");
-#ifdef TRIGRAV_PEER_COMPARISON_WITH_KITTI
-  const bool with_kitti = !trigrav::kitti::KittiDirFlag().empty();
-  if (with_kitti) trigrav::kitti::ValidateKittiFlags(/*output_dir=*/"");
-#endif
   trigrav::peers::RunPeersSingleThreaded();
 
   const double start = NowSeconds();
@@ -459,9 +397,6 @@ int main(int argc, char** argv) {
   RunMinimalSolvers();
   RunRobust();
   RunAccuracy();
-#ifdef TRIGRAV_PEER_COMPARISON_WITH_KITTI
-  if (with_kitti) RunKitti();
-#endif
   std::printf("\nTotal run time %.0f s.\n", NowSeconds() - start);
   return 0;
 }

@@ -3,7 +3,7 @@
 #include <random>
 
 #include "peer_backends.h"
-#include "trigrav/initializers/synthetic_scene.h"
+#include "trigrav/evaluation/synthetic_scene.h"
 
 namespace trigrav::peers {
 

@@ -3,9 +3,9 @@
 
 // trigrav side by side with the libraries a user with gravity would otherwise call: OpenCV's and
 // OpenGV's five-point RANSAC on the view pairs (1,2) and (1,3). Every estimator has one shape, so
-// that an evaluation (examples/peer_comparison.cc, a KITTI tool) runs them all alike: pixels and
-// intrinsics in, one three-view pose out. The peers are optional at build time; this header and the
-// trigrav entries do not depend on them.
+// that an evaluation (peer_comparison, kitti_triplets --peers, paper_experiments --peers) runs them
+// all alike: pixels and intrinsics in, one three-view estimate out. The peers are optional at build
+// time; this header and the trigrav entries do not depend on them.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -14,19 +14,20 @@
 #include <vector>
 
 #include "trigrav/initializers/camera_pose.h"
+#include "trigrav/initializers/robust_three_view.h"
 #include "trigrav/initializers/three_view_observations.h"
 
 namespace trigrav::peers {
 
-// What every estimator returns.
-struct EstimatorResult {
-  bool success = false;
-  std::string message;  // why not, when !success; a note when the relative scale is unknown
-  ThreeViewPose pose;   // original camera frames, |cam2_from_cam1.Center()| = 1
+// What every estimator returns: a robust three-view estimate (success; message: why not, or a note
+// when the relative scale is unknown; pose in the original camera frames with
+// |cam2_from_cam1.Center()| = 1; inliers per triplet, ransac.num_inliers of them set) and what an
+// evaluation adds. For a pairwise peer the inliers are the triplets that are inliers of both pairs
+// and ransac holds only num_inliers (the peers report no iteration counts); for a refined trigrav
+// estimate they are the refinement's inliers, the other statistics those of its RANSAC.
+struct EstimatorResult : RobustThreeViewEstimate {
   // False when a pairwise estimate could not fix the relative scale (camera 3 at |centre| = 1).
   bool relative_scale_known = true;
-  // Triplets the estimate calls inliers (for a pairwise peer: inliers of both pairs).
-  int num_inliers = 0;
   double time_s = 0.0;  // wall time of the whole estimate, measured around the call
 };
 
@@ -36,16 +37,19 @@ using Estimator =
     std::function<EstimatorResult(const ThreeViewObservations& observations, double threshold_px)>;
 
 struct NamedEstimator {
-  std::string name;         // short, for table rows: "trigrav-3pt", "opencv-ransac", ...
+  // For table rows: trigrav's InitialSolverName ("3pt", ...) or the peer's name ("opencv-ransac").
+  std::string name;
+  // "raw" (the robust estimate as returned) or "yaw-only" (trigrav's, refined by InitializeAndRefine
+  // with the yaw-only rotation model).
+  std::string stage;
   std::string description;  // API, method, threshold meaning, iterations and confidence
   Estimator estimate;
 };
 
 // trigrav's RANSAC estimates (EstimateThreeViewPoseRobust, default RansacOptions apart from the
-// threshold): trigrav-3pt, trigrav-4pt, trigrav-5pt.
+// threshold), one per method of kInitialSolvers, stage "raw".
 std::vector<NamedEstimator> TrigravRobustEstimators();
-// The same three, each refined by InitializeAndRefine (yaw-only bundle adjustment):
-// trigrav-3pt+ba, trigrav-4pt+ba, trigrav-5pt+ba.
+// The same, each refined by InitializeAndRefine (yaw-only bundle adjustment), stage "yaw-only".
 std::vector<NamedEstimator> TrigravRefinedEstimators();
 // The peers found at build time (empty if none): opencv-ransac, opencv-usac-magsac,
 // opencv-usac-default, opengv-ransac-stewenius, opengv-ransac-nister, opengv-ransac-nister+nl.
@@ -83,8 +87,9 @@ struct NamedMinimalSolver {
   std::function<PreparedMinimalSolver(const std::vector<MinimalProblem>&)> prepare;
 };
 
-// trigrav's SolveTrifocal3pt, SolveTrifocal4pt (with each camera's gravity, as a pipeline calls
-// them) and SolveEssential5pt on pair (1,2).
+// trigrav's minimal solvers of at most five triplets, named by their method: "3pt"
+// (SolveTrifocal3pt), "4pt" (SolveTrifocal4pt), with each camera's gravity as a pipeline calls
+// them, and "5pt" (SolveEssential5pt on pair (1,2)).
 std::vector<NamedMinimalSolver> TrigravMinimalSolvers();
 // OpenGV's fivept_stewenius and fivept_nister on pair (1,2), if OpenGV was found. OpenCV has no
 // public minimal-solver call, so it has no entry.

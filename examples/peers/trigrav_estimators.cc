@@ -8,8 +8,8 @@
 
 #include "peer_estimators.h"
 #include "trigrav/ba/initialize_and_refine.h"
+#include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/initializers/essential_5pt.h"
-#include "trigrav/initializers/pose_metrics.h"
 #include "trigrav/initializers/robust_three_view.h"
 #include "trigrav/initializers/trifocal_3pt.h"
 #include "trigrav/initializers/trifocal_4pt.h"
@@ -19,23 +19,34 @@ namespace {
 
 constexpr double kTruthDeg = 1e-6;
 
-// Times run(), which returns a RobustThreeViewEstimate or a ThreeViewEstimate, and reports its
-// member `pose`.
-template <typename Estimate, typename Run>
-EstimatorResult Timed(const Run& run, ThreeViewPose Estimate::*pose) {
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+EstimatorResult RobustEstimate(const ThreeViewObservations& observations,
+                               const RobustThreeViewOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  const Estimate estimate = run();
   EstimatorResult result;
-  result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.success = estimate.success;
-  result.message = estimate.message;
-  result.pose = estimate.*pose;
-  result.num_inliers = estimate.num_inliers;
+  static_cast<RobustThreeViewEstimate&>(result) = EstimateThreeViewPoseRobust(observations, options);
+  result.time_s = SecondsSince(start);
   return result;
 }
 
-const InitialSolver kSolvers[] = {InitialSolver::kTrifocal3pt, InitialSolver::kTrifocal4pt,
-                                  InitialSolver::kEssential5pt};
+// The refined pose of InitializeAndRefine with its inliers (ransac.num_inliers counting them).
+EstimatorResult RefinedEstimate(const ThreeViewObservations& observations,
+                                const InitializeAndRefineOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const ThreeViewEstimate estimate = InitializeAndRefine(observations, options);
+  EstimatorResult result;
+  result.time_s = SecondsSince(start);
+  result.success = estimate.success;
+  result.message = estimate.message;
+  result.pose = estimate.refined;
+  result.inliers = estimate.inliers;
+  result.ransac = estimate.ransac;
+  result.ransac.num_inliers = estimate.num_inliers;
+  return result;
+}
 
 std::string RansacDescription(InitialSolver solver) {
   const RansacOptions defaults;
@@ -44,8 +55,7 @@ std::string RansacDescription(InitialSolver solver) {
                 defaults.confidence, defaults.min_iterations, defaults.max_iterations);
   return std::string("trigrav::EstimateThreeViewPoseRobust, InitialSolver ") +
          InitialSolverName(solver) +
-         (solver == InitialSolver::kEssential5pt ? " (pairs (1,2) and (1,3), no gravity)"
-                                                 : " (with gravity)") +
+         (UsesGravity(solver) ? " (with gravity)" : " (no gravity)") +
          "; inlier iff the largest reprojection error over the 3 views of the midpoint-"
          "triangulated triplet <= threshold; " +
          settings;
@@ -96,8 +106,8 @@ NamedMinimalSolver GravityMinimalSolver(std::string name,
 }
 
 NamedMinimalSolver Essential5ptMinimalSolver() {
-  NamedMinimalSolver entry{"trigrav SolveEssential5pt",
-                           "Nister five-point on pair (1,2), 5 rays; decomposes every E and "
+  NamedMinimalSolver entry{"5pt",
+                           "SolveEssential5pt: Nister five-point on pair (1,2), 5 rays; decomposes every E and "
                            "keeps the cheirality-consistent poses",
                            nullptr};
   entry.prepare = [](const std::vector<MinimalProblem>& problems) {
@@ -135,34 +145,31 @@ NamedMinimalSolver Essential5ptMinimalSolver() {
 
 std::vector<NamedEstimator> TrigravRobustEstimators() {
   std::vector<NamedEstimator> estimators;
-  for (const InitialSolver solver : kSolvers) {
-    estimators.push_back(
-        {std::string("trigrav-") + InitialSolverName(solver), RansacDescription(solver),
-         [solver](const ThreeViewObservations& observations, double threshold_px) {
-           RobustThreeViewOptions options;
-           options.solver = solver;
-           options.ransac.max_error = threshold_px;
-           return Timed([&] { return EstimateThreeViewPoseRobust(observations, options); },
-                        &RobustThreeViewEstimate::pose);
-         }});
+  for (const InitialSolver solver : kInitialSolvers) {
+    estimators.push_back({InitialSolverName(solver), "raw", RansacDescription(solver),
+                          [solver](const ThreeViewObservations& observations, double threshold_px) {
+                            RobustThreeViewOptions options;
+                            options.solver = solver;
+                            options.ransac.max_error = threshold_px;
+                            return RobustEstimate(observations, options);
+                          }});
   }
   return estimators;
 }
 
 std::vector<NamedEstimator> TrigravRefinedEstimators() {
   std::vector<NamedEstimator> estimators;
-  for (const InitialSolver solver : kSolvers) {
+  for (const InitialSolver solver : kInitialSolvers) {
     estimators.push_back(
-        {std::string("trigrav-") + InitialSolverName(solver) + "+ba",
+        {InitialSolverName(solver), "yaw-only",
          RansacDescription(solver) +
              "; then trigrav::InitializeAndRefine: yaw-only bundle adjustment on the inliers "
              "(Huber 2 px), one re-classification round, 1 thread",
          [solver](const ThreeViewObservations& observations, double threshold_px) {
            InitializeAndRefineOptions options;
-           options.solver = solver;
-           options.inlier_threshold_px = threshold_px;
-           return Timed([&] { return InitializeAndRefine(observations, options); },
-                        &ThreeViewEstimate::refined);
+           options.robust.solver = solver;
+           options.robust.ransac.max_error = threshold_px;
+           return RefinedEstimate(observations, options);
          }});
   }
   return estimators;
@@ -171,8 +178,8 @@ std::vector<NamedEstimator> TrigravRefinedEstimators() {
 std::vector<NamedMinimalSolver> TrigravMinimalSolvers() {
   using Rays = std::vector<Eigen::Vector3d>;
   return {
-      GravityMinimalSolver("trigrav SolveTrifocal3pt",
-                           "3 triplets + each camera's gravity; aligns the rays, "
+      GravityMinimalSolver("3pt",
+                           "SolveTrifocal3pt: 3 triplets + each camera's gravity; aligns the rays, "
                            "returns every cheirality-consistent three-view pose, best first",
                            3,
                            [](const Rays& x1, const Rays& x2, const Rays& x3,
@@ -180,8 +187,8 @@ std::vector<NamedMinimalSolver> TrigravMinimalSolvers() {
                               const Eigen::Vector3d& g3, std::vector<ThreeViewPose>* solutions) {
                              return SolveTrifocal3pt(x1, x2, x3, g1, g2, g3, solutions);
                            }),
-      GravityMinimalSolver("trigrav SolveTrifocal4pt",
-                           "4 triplets + each camera's gravity; aligns the rays, "
+      GravityMinimalSolver("4pt",
+                           "SolveTrifocal4pt: 4 triplets + each camera's gravity; aligns the rays, "
                            "one three-view pose (linear trifocal + polish)",
                            4,
                            [](const Rays& x1, const Rays& x2, const Rays& x3,

@@ -3,12 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Geometry>
 
 #include "essential_decomposition.h"
-#include "solver_utils.h"
+#include "input_checks.h"
+#include "polynomial.h"
 
 namespace trigrav {
 namespace {
@@ -172,27 +173,6 @@ Eigen::Matrix<double, 10, 20> ConstraintMatrix(const Eigen::Matrix<double, 9, 4>
   return C;
 }
 
-// Polynomials in z, coefficients lowest degree first.
-template <int Degree>
-using PolynomialZ = std::array<double, Degree + 1>;
-
-template <int DegreeA, int DegreeB>
-PolynomialZ<DegreeA + DegreeB> MultiplyZ(const PolynomialZ<DegreeA>& a,
-                                         const PolynomialZ<DegreeB>& b) {
-  PolynomialZ<DegreeA + DegreeB> product{};
-  for (int i = 0; i <= DegreeA; ++i) {
-    for (int j = 0; j <= DegreeB; ++j) product[i + j] += a[i] * b[j];
-  }
-  return product;
-}
-
-template <int Degree>
-PolynomialZ<Degree> SubtractZ(const PolynomialZ<Degree>& a, const PolynomialZ<Degree>& b) {
-  PolynomialZ<Degree> difference;
-  for (int i = 0; i <= Degree; ++i) difference[i] = a[i] - b[i];
-  return difference;
-}
-
 // Nister's hidden-variable form (Nister 2004, section 3.2): after Gauss-Jordan elimination of the
 // monomials below, each pair (x^2 z, x^2), (y^2 z, y^2), (x y z, x y) gives <row with z> - z <row
 // without z>, an equation [x, y, 1] . (b_x(z), b_y(z), b_1(z)) = 0 with degrees 3, 3, 4. The three
@@ -204,27 +184,27 @@ constexpr std::array<int, 20> kNisterOrder = {0,  6,  1,  3,  2,  10, 7,  13, 4,
                                               5,  12, 16, 8,  14, 17, 9,  15, 18, 19};
 
 struct HiddenVariableMatrix {
-  PolynomialZ<3> bx[3], by[3];
-  PolynomialZ<4> b1[3];
+  internal::Polynomial<3> bx[3], by[3];
+  internal::Polynomial<4> b1[3];
 
   Eigen::Matrix3d Evaluate(double z) const {
     Eigen::Matrix3d B;
     for (int r = 0; r < 3; ++r) {
-      B(r, 0) = ((bx[r][3] * z + bx[r][2]) * z + bx[r][1]) * z + bx[r][0];
-      B(r, 1) = ((by[r][3] * z + by[r][2]) * z + by[r][1]) * z + by[r][0];
-      B(r, 2) = (((b1[r][4] * z + b1[r][3]) * z + b1[r][2]) * z + b1[r][1]) * z + b1[r][0];
+      B(r, 0) = internal::EvaluatePolynomial(bx[r], z);
+      B(r, 1) = internal::EvaluatePolynomial(by[r], z);
+      B(r, 2) = internal::EvaluatePolynomial(b1[r], z);
     }
     return B;
   }
 
   // det B(z), expanded along the third column.
-  PolynomialZ<10> Determinant() const {
-    PolynomialZ<10> det{};
+  internal::Polynomial<10> Determinant() const {
+    internal::Polynomial<10> det{};
     for (int r = 0; r < 3; ++r) {
       const int a = (r + 1) % 3, b = (r + 2) % 3;
-      const PolynomialZ<6> minor =
-          SubtractZ<6>(MultiplyZ<3, 3>(bx[a], by[b]), MultiplyZ<3, 3>(bx[b], by[a]));
-      const PolynomialZ<10> term = MultiplyZ<4, 6>(b1[r], minor);
+      const internal::Polynomial<6> minor = internal::SubtractPolynomials(
+          internal::MultiplyPolynomials(bx[a], by[b]), internal::MultiplyPolynomials(bx[b], by[a]));
+      const internal::Polynomial<10> term = internal::MultiplyPolynomials(b1[r], minor);
       for (int i = 0; i <= 10; ++i) det[i] += term[i];
     }
     return det;
@@ -265,235 +245,6 @@ bool MakeHiddenVariableMatrix(const Eigen::Matrix<double, 10, 20>& C, HiddenVari
     B->b1[pair] = {p[9], p[8] - q[9], p[7] - q[8], p[6] - q[7], -q[6]};
   }
   return true;
-}
-
-// Polynomial of degree <= 10 in a single variable, lowest degree first.
-using Coefficients = std::array<double, 11>;
-
-// Value, first and second derivative of c[0] + ... + c[degree] t^degree at t (Horner).
-double EvaluateWithDerivatives(const double* c, int degree, double t, double* first,
-                               double* second) {
-  double value = c[degree];
-  double d1 = 0.0, d2 = 0.0;
-  for (int i = degree - 1; i >= 0; --i) {
-    d2 = d2 * t + d1;
-    d1 = d1 * t + value;
-    value = value * t + c[i];
-  }
-  *first = d1;
-  *second = 2.0 * d2;
-  return value;
-}
-
-double Evaluate(const double* c, int degree, double t) {
-  double value = c[degree];
-  for (int i = degree - 1; i >= 0; --i) value = value * t + c[i];
-  return value;
-}
-
-// The root of the polynomial (degree n) in [lo, hi], which holds exactly one root and across which
-// the polynomial changes sign, by Laguerre's method safeguarded with bisection (a step leaving the
-// current bracket is replaced by its midpoint). Laguerre's step
-// n / (G +- sqrt((n - 1)(n H - G^2))), G = p'/p, H = G^2 - p''/p, is exact for (t - r)^n and
-// converges cubically to a simple root, so it also comes in quickly from a distant start, where
-// Newton crawls by factors (1 - 1/n); Newton's step is used if the square root is not real. Starts
-// from the secant of the bracket (regula falsi); stops once a step is below
-// tolerance * max(1, |x|).
-double RootInBracket(const double* c, int degree, double lo, double hi, double value_lo,
-                     double value_hi, double tolerance) {
-  const bool increasing = value_lo < 0.0;
-  double x = lo - value_lo * (hi - lo) / (value_hi - value_lo);
-  if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
-  const double n = degree;
-  for (int iteration = 0; iteration < 100; ++iteration) {
-    double first = 0.0, second = 0.0;
-    const double value = EvaluateWithDerivatives(c, degree, x, &first, &second);
-    if (value == 0.0) return x;
-    if ((value < 0.0) == increasing) {
-      lo = x;
-    } else {
-      hi = x;
-    }
-    const double G = first / value;
-    const double H = G * G - second / value;
-    const double discriminant = (n - 1.0) * (n * H - G * G);
-    double next = x - value / first;
-    if (discriminant >= 0.0) {
-      const double root = std::sqrt(discriminant);
-      const double denominator = G >= 0.0 ? G + root : G - root;
-      if (denominator != 0.0) next = x - n / denominator;
-    }
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    const double step = std::abs(next - x);
-    x = next;
-    if (step <= tolerance * std::max(1.0, std::abs(x))) break;
-  }
-  return x;
-}
-
-constexpr double kRootTolerance = 1e-15;
-
-// Real roots in [-1, 1] of the monic polynomial p of degree n whose roots all lie in [-1, 1], by
-// Sturm sequences as in Nister (2004): p_0 = p, p_1 = p', p_{k+1} = -(p_{k-1} mod p_k); the number
-// of roots in (a, b] is the drop in sign changes along the sequence from a to b. Bisection isolates
-// them, RootInBracket refines them. The remainder chain can lose precision; the result is flagged
-// inconsistent (*consistent = false, to be redone by DerivativeRoots) if an isolated interval shows
-// no sign change of p, a cluster cannot be separated, or the count has not the parity of n (complex
-// roots come in pairs).
-int SturmRoots(const Coefficients& p, int n, std::array<double, 10>* roots, bool* consistent) {
-  *consistent = false;
-  // The chain, every member scaled to a leading coefficient of +-1 (signs unchanged).
-  std::array<Coefficients, 11> chain;
-  std::array<int, 11> degree{};
-  chain[0] = p;
-  degree[0] = n;
-  chain[1] = Coefficients{};
-  for (int i = 1; i <= n; ++i) chain[1][i - 1] = i * p[i] / n;
-  degree[1] = n - 1;
-  int length = 2;
-  while (degree[length - 1] > 0) {
-    const int k = length - 1;
-    Coefficients remainder = chain[k - 1];
-    double scale = 0.0;
-    for (int i = 0; i <= degree[k - 1]; ++i) scale = std::max(scale, std::abs(remainder[i]));
-    for (int i = degree[k - 1]; i >= degree[k]; --i) {
-      const double factor = remainder[i] / chain[k][degree[k]];
-      for (int j = 0; j <= degree[k]; ++j) remainder[i - degree[k] + j] -= factor * chain[k][j];
-      remainder[i] = 0.0;
-    }
-    int d = degree[k] - 1;
-    while (d >= 0 && !(std::abs(remainder[d]) > 1e-14 * scale)) --d;
-    if (d < 0) break;  // p and p' share a factor (a multiple root): the chain ends here
-    const double factor = -1.0 / std::abs(remainder[d]);
-    chain[length] = Coefficients{};
-    for (int i = 0; i <= d; ++i) chain[length][i] = factor * remainder[i];
-    degree[length] = d;
-    ++length;
-  }
-  auto sign_changes = [&](double t) {
-    int changes = 0;
-    double previous = 0.0;
-    for (int k = 0; k < length; ++k) {
-      const double value = Evaluate(chain[k].data(), degree[k], t);
-      if (value == 0.0) continue;
-      if (previous != 0.0 && (value < 0.0) != (previous < 0.0)) ++changes;
-      previous = value;
-    }
-    return changes;
-  };
-
-  struct Interval {
-    double a, b;
-    int changes_a, changes_b;
-  };
-  std::array<Interval, 64> stack;
-  int stack_size = 0;
-  stack[stack_size++] = {-1.0, 1.0, sign_changes(-1.0), sign_changes(1.0)};
-  int count = 0;
-  while (stack_size > 0) {
-    const Interval interval = stack[--stack_size];
-    const int inside = interval.changes_a - interval.changes_b;
-    if (inside <= 0) continue;
-    if (inside == 1) {
-      const double value_a = Evaluate(p.data(), n, interval.a);
-      const double value_b = Evaluate(p.data(), n, interval.b);
-      if (value_b == 0.0) {
-        (*roots)[count++] = interval.b;
-      } else if ((value_a < 0.0) != (value_b < 0.0) && value_a != 0.0) {
-        (*roots)[count++] =
-            RootInBracket(p.data(), n, interval.a, interval.b, value_a, value_b, kRootTolerance);
-      } else {
-        return count;  // the chain's count disagrees with p itself
-      }
-    } else {
-      const double middle = 0.5 * (interval.a + interval.b);
-      if (interval.b - interval.a < 1e-13 || stack_size + 2 > static_cast<int>(stack.size())) {
-        return count;  // a cluster bisection cannot separate
-      }
-      const int changes_middle = sign_changes(middle);
-      stack[stack_size++] = {interval.a, middle, interval.changes_a, changes_middle};
-      stack[stack_size++] = {middle, interval.b, changes_middle, interval.changes_b};
-    }
-    if (count == n) break;
-  }
-  *consistent = count % 2 == n % 2;
-  return count;
-}
-
-// Real roots in [-1, 1] of the monic polynomial p of degree n whose roots all lie in [-1, 1],
-// without a derived sequence (slower than SturmRoots, robust): the real roots of p^(k+1) split
-// [-1, 1] into intervals on which p^(k) is monotone, so each interval holds a root of p^(k) exactly
-// when p^(k) changes sign across it; from the linear p^(n-1) down to p (by Gauss-Lucas all these
-// roots lie in [-1, 1] too). A double root without a sign change is missed.
-int DerivativeRoots(const Coefficients& p, int n, std::array<double, 10>* roots) {
-  // derivatives[k] = p^(k), scaled to be monic (a constant factor does not move roots).
-  std::array<Coefficients, 10> derivatives;
-  derivatives[0] = p;
-  for (int k = 1; k < n; ++k) {
-    const int d = n - k;  // degree of p^(k)
-    for (int i = 0; i <= d; ++i) derivatives[k][i] = (i + 1) * derivatives[k - 1][i + 1] / (d + 1);
-  }
-  std::array<double, 10> current;  // real roots of p^(k+1), increasing
-  int count = 0;
-  for (int k = n - 1; k >= 0; --k) {
-    const double* q = derivatives[k].data();
-    const int d = n - k;
-    std::array<double, 10> next;
-    int next_count = 0;
-    double lo = -1.0;
-    double value_lo = Evaluate(q, d, lo);
-    for (int interval = 0; interval <= count; ++interval) {
-      const double hi = interval < count ? current[interval] : 1.0;
-      const double value_hi = Evaluate(q, d, hi);
-      if (value_lo == 0.0) {
-        if (next_count == 0 || next[next_count - 1] != lo) next[next_count++] = lo;
-      } else if ((value_lo < 0.0) != (value_hi < 0.0) && value_hi != 0.0) {
-        // Roots of the derivatives only separate those of p: 1e-10 is plenty for them.
-        next[next_count++] =
-            RootInBracket(q, d, lo, hi, value_lo, value_hi, k == 0 ? kRootTolerance : 1e-10);
-      }
-      lo = hi;
-      value_lo = value_hi;
-    }
-    if (value_lo == 0.0 && (next_count == 0 || next[next_count - 1] != lo)) next[next_count++] = lo;
-    current = next;
-    count = next_count;
-  }
-  *roots = current;
-  return count;
-}
-
-// Real roots of c[0] + ... + c[10] z^10 (Nister's degree-10 polynomial). Leading coefficients below
-// 1e-14 of the largest are dropped (roots beyond ~1e14^(1/k)). The polynomial is made monic and
-// balanced, z = s u with s = Fujiwara's bound 2 max_i |a_(n-i)|^(1/i) (|a_0 / 2| for i = n), so all
-// roots u lie in [-1, 1] and the coefficients are O(1): without the balancing the Sturm chain gave
-// wrong roots in about 2 % of noise-free scenes, with it in about 0.005 %, which the consistency
-// checks send to the robust but three times slower DerivativeRoots. Returns the count.
-int RealRootsDegreeTen(const PolynomialZ<10>& c, std::array<double, 10>* roots) {
-  double largest = 0.0;
-  for (const double value : c) largest = std::max(largest, std::abs(value));
-  if (!(largest > 0.0) || !std::isfinite(largest)) return 0;
-  int n = 10;
-  while (n > 0 && !(std::abs(c[n]) > 1e-14 * largest)) --n;
-  if (n == 0) return 0;
-  double bound = 0.0;
-  for (int i = 1; i <= n; ++i) {
-    const double a = std::abs(c[n - i] / c[n]) * (i == n ? 0.5 : 1.0);
-    bound = std::max(bound, i == 1 ? a : std::pow(a, 1.0 / i));
-  }
-  // Slightly widened against rounding; floored so that the balancing cannot overflow.
-  const double s = std::max(2.0 * bound * (1.0 + 1e-6), 1e-30);
-  Coefficients balanced{};  // u^n + ... with u = z / s: coefficient i is (c_i / c_n) s^(i - n)
-  double factor = 1.0 / c[n];
-  for (int i = n; i >= 0; --i) {
-    balanced[i] = c[i] * factor;
-    factor /= s;
-  }
-  bool consistent = false;
-  int count = SturmRoots(balanced, n, roots, &consistent);
-  if (!consistent) count = DerivativeRoots(balanced, n, roots);
-  for (int i = 0; i < count; ++i) (*roots)[i] *= s;
-  return count;
 }
 
 // Gauss-Newton on the 10 cubic constraints C m(x, y, z) = 0 (m the 20 monomials of kMonomials):
@@ -567,7 +318,7 @@ int EssentialCandidates(const Eigen::Matrix<double, 9, 4>& basis,
   HiddenVariableMatrix B;
   if (!MakeHiddenVariableMatrix(C, &B)) return 0;
   std::array<double, 10> roots;
-  const int num_roots = RealRootsDegreeTen(B.Determinant(), &roots);
+  const int num_roots = internal::SolveDegreeTenReal(B.Determinant(), &roots);
   int count = 0;
   for (int i = 0; i < num_roots; ++i) {
     const double z = roots[i];

@@ -4,8 +4,12 @@
 #include <cstddef>
 #include <limits>
 
+#include <Eigen/Geometry>
+
 #include "essential_decomposition.h"
-#include "solver_utils.h"
+#include "input_checks.h"
+#include "null_space.h"
+#include "triangular_factor.h"
 
 namespace trigrav {
 namespace {

@@ -3,9 +3,11 @@
 #include <cmath>
 #include <cstddef>
 
+#include <Eigen/Geometry>
 #include <Eigen/SVD>
 
-#include "solver_utils.h"
+#include "null_space.h"
+#include "two_view_geometry.h"
 
 namespace trigrav {
 namespace internal {

@@ -1,7 +1,9 @@
 #include "trigrav/initializers/robust_three_view.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -9,7 +11,6 @@
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
 
-#include "solver_utils.h"
 #include "trigrav/initializers/essential_5pt.h"
 #include "trigrav/initializers/essential_8pt.h"
 #include "trigrav/initializers/gravity.h"
@@ -230,13 +231,10 @@ RobustThreeViewEstimate Run(const TripletData& data, const RansacOptions& option
   RobustThreeViewEstimate estimate;
   estimate.success = report.success;
   estimate.message = report.message;
-  estimate.iterations = report.iterations;
-  estimate.num_models_scored = report.num_models_scored;
-  estimate.num_local_optimizations = report.num_local_optimizations;
+  estimate.ransac = report.statistics;
   if (report.success) {
     estimate.pose = report.model.pose;
     estimate.inliers = report.inlier_mask;
-    estimate.num_inliers = report.num_inliers;
   }
   return estimate;
 }
@@ -285,13 +283,13 @@ void RejectWithoutParallax(const ThreeViewObservations& observations, const Trip
   estimate->message =
       "no parallax between views 1 and 2: a rotation of camera 2 without baseline explains " +
       std::to_string(static_cast<int>(std::round(100.0 * share))) + " % of the " +
-      std::to_string(estimate->num_inliers) +
+      std::to_string(estimate->ransac.num_inliers) +
       " inliers, so camera 2's centre (the scale |C2| = 1) is not observable (zero baseline, pure "
       "rotation, points at infinity)";
   estimate->success = false;
   estimate->pose = ThreeViewPose();
   estimate->inliers.clear();
-  estimate->num_inliers = 0;
+  estimate->ransac.num_inliers = 0;
 }
 
 using RunFunction = RobustThreeViewEstimate (*)(const TripletData&, const RansacOptions&);
@@ -300,6 +298,7 @@ struct SolverInfo {
   InitialSolver solver;
   const char* name;
   int sample_size;
+  bool uses_gravity;
   RunFunction run;
   RunFunction run_tilt_correcting;  // == run for the methods that do not use gravity
 };
@@ -307,9 +306,9 @@ struct SolverInfo {
 template <typename M>
 constexpr SolverInfo MakeSolverInfo(InitialSolver solver, const char* name) {
   if constexpr (M::kAligned) {
-    return {solver, name, M::kSampleSize, &Run<M>, &Run<TiltCorrectingRefinement<M>>};
+    return {solver, name, M::kSampleSize, true, &Run<M>, &Run<TiltCorrectingRefinement<M>>};
   } else {
-    return {solver, name, M::kSampleSize, &Run<M>, &Run<M>};
+    return {solver, name, M::kSampleSize, false, &Run<M>, &Run<M>};
   }
 }
 
@@ -321,6 +320,14 @@ constexpr std::array<SolverInfo, 6> kSolvers = {{
     MakeSolverInfo<Method5pt>(InitialSolver::kEssential5pt, "5pt"),
     MakeSolverInfo<Method8pt>(InitialSolver::kEssential8pt, "8pt"),
 }};
+
+constexpr bool TableFollowsInitialSolverList() {
+  for (std::size_t i = 0; i < kSolvers.size(); ++i) {
+    if (kSolvers[i].solver != kInitialSolvers[i]) return false;
+  }
+  return kSolvers.size() == kInitialSolvers.size();
+}
+static_assert(TableFollowsInitialSolverList(), "kSolvers must follow kInitialSolvers");
 
 const SolverInfo& Info(InitialSolver solver) {
   for (const SolverInfo& info : kSolvers) {
@@ -335,6 +342,25 @@ const char* InitialSolverName(InitialSolver solver) { return Info(solver).name; 
 
 int MinimalSampleSize(InitialSolver solver) { return Info(solver).sample_size; }
 
+bool UsesGravity(InitialSolver solver) { return Info(solver).uses_gravity; }
+
+std::string InitialSolverNames() {
+  std::string names;
+  for (const SolverInfo& info : kSolvers) names += (names.empty() ? "" : ", ") + std::string(info.name);
+  return names;
+}
+
+void RobustThreeViewOptions::Check() const {
+  Info(solver);  // throws for a value outside the enum
+  ransac.Check();
+  if (!(max_tilt_correction_deg == kTiltCorrectionFromGravitySigma ||
+        (max_tilt_correction_deg >= 0.0 && max_tilt_correction_deg < 90.0))) {
+    throw std::invalid_argument(
+        "trigrav: RobustThreeViewOptions: max_tilt_correction_deg must be in [0, 90) or "
+        "kTiltCorrectionFromGravitySigma");
+  }
+}
+
 bool ParseInitialSolver(const std::string& name, InitialSolver* solver) {
   for (const SolverInfo& info : kSolvers) {
     if (name == info.name) {
@@ -347,16 +373,13 @@ bool ParseInitialSolver(const std::string& name, InitialSolver* solver) {
 
 RobustThreeViewEstimate EstimateThreeViewPoseRobust(const ThreeViewObservations& observations,
                                                     const RobustThreeViewOptions& options) {
-  options.ransac.Check();
-  if (!(options.max_tilt_correction_deg >= 0.0 && options.max_tilt_correction_deg < 90.0)) {
-    throw std::invalid_argument(
-        "trigrav: RobustThreeViewOptions: max_tilt_correction_deg must be in [0, 90)");
-  }
+  options.Check();
+  // Without a gravity sigma the automatic bound is 0 (header).
+  const double max_tilt_correction_deg = std::max(options.max_tilt_correction_deg, 0.0);
   // Its ThreeViewReprojectionError checks the observations.
-  const TripletData data(observations, options.max_tilt_correction_deg);
+  const TripletData data(observations, max_tilt_correction_deg);
   const SolverInfo& info = Info(options.solver);
-  const RunFunction run =
-      options.max_tilt_correction_deg > 0.0 ? info.run_tilt_correcting : info.run;
+  const RunFunction run = max_tilt_correction_deg > 0.0 ? info.run_tilt_correcting : info.run;
   RobustThreeViewEstimate estimate = run(data, options.ransac);
   if (estimate.success) RejectWithoutParallax(observations, data, options.ransac.max_error, &estimate);
   return estimate;

@@ -3,8 +3,9 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
-#include "solver_utils.h"
+#include "input_checks.h"
 
 namespace trigrav {
 

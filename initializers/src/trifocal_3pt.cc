@@ -4,8 +4,15 @@
 #include <array>
 #include <cmath>
 
+#include <Eigen/Geometry>
+
+#include "gravity_wrapper.h"
+#include "input_checks.h"
+#include "null_space.h"
 #include "polynomial.h"
-#include "solver_utils.h"
+#include "triangular_factor.h"
+#include "trifocal_common.h"
+#include "two_view_geometry.h"
 
 namespace trigrav {
 namespace {

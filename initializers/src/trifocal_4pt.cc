@@ -9,7 +9,12 @@
 #include <Eigen/Cholesky>
 #include <Eigen/QR>
 
-#include "solver_utils.h"
+#include "gravity_wrapper.h"
+#include "input_checks.h"
+#include "null_space.h"
+#include "triangular_factor.h"
+#include "trifocal_common.h"
+#include "trigrav/initializers/gravity.h"
 
 namespace trigrav {
 namespace {
@@ -103,20 +108,6 @@ void CentersFromQ(const Vector17d& q, double ty2, double ty3, AlignedEstimate* e
       RotationAboutY(estimate->theta2).transpose() * Eigen::Vector3d(q[8], ty2, q[12]);
   estimate->center3 =
       RotationAboutY(estimate->theta3).transpose() * Eigen::Vector3d(-q[9], ty3, -q[11]);
-}
-
-// Epipoles e', e'' of the tensor T(q): left null vectors of [u1 u2 u3] and [v1 v2 v3], u_i and v_i the
-// left and right null vectors of T_i (eq. f1). False if they are not defined.
-bool EpipolesFromQ(const Vector17d& q, Eigen::Vector3d* epipole2, Eigen::Vector3d* epipole3) {
-  const TensorSlices T = TensorFromQ(q);
-  Eigen::Matrix3d left_null_vectors, right_null_vectors;
-  for (int i = 0; i < 3; ++i) {
-    left_null_vectors.col(i) = internal::NullVector3(T[i].transpose());
-    right_null_vectors.col(i) = internal::NullVector3(T[i]);
-  }
-  *epipole2 = internal::NullVector3(left_null_vectors.transpose());
-  *epipole3 = internal::NullVector3(right_null_vectors.transpose());
-  return !epipole2->isZero() && !epipole3->isZero();
 }
 
 // Constraint enforcement for given epipoles (eqs f2-f7) and the pose read from a (math note 3.3 step
@@ -245,7 +236,7 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen
   Eigen::Vector3d epipole2, epipole3;
   switch (options.recovery) {
     case Trifocal4ptRecovery::kEnforced:
-      ok = EpipolesFromQ(q, &epipole2, &epipole3) &&
+      ok = internal::EpipolesFromTensor(TensorFromQ(q), &epipole2, &epipole3) &&
            EnforceConstraints(M, epipole2, epipole3, &estimate);
       break;
     case Trifocal4ptRecovery::kLeastSquares:

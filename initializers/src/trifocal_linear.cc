@@ -6,9 +6,14 @@
 #include <limits>
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 #include "essential_decomposition.h"
-#include "solver_utils.h"
+#include "input_checks.h"
+#include "null_space.h"
+#include "triangular_factor.h"
+#include "trifocal_common.h"
+#include "two_view_geometry.h"
 
 namespace trigrav {
 namespace {
@@ -112,14 +117,8 @@ Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
 bool EssentialMatricesFromTensor(const TensorSlices& T,
                                  Eigen::Matrix3d* E21,
                                  Eigen::Matrix3d* E31) {
-  Eigen::Matrix3d left_null_vectors, right_null_vectors;
-  for (int i = 0; i < 3; ++i) {
-    left_null_vectors.col(i) = internal::NullVector3(T[i].transpose());
-    right_null_vectors.col(i) = internal::NullVector3(T[i]);
-  }
-  const Eigen::Vector3d epipole2 = internal::NullVector3(left_null_vectors.transpose());   // e'
-  const Eigen::Vector3d epipole3 = internal::NullVector3(right_null_vectors.transpose());  // e''
-  if (epipole2.isZero() || epipole3.isZero()) return false;
+  Eigen::Vector3d epipole2, epipole3;  // e', e''
+  if (!internal::EpipolesFromTensor(T, &epipole2, &epipole3)) return false;
   Eigen::Matrix3d M2, M3;
   const Eigen::Matrix3d projector = epipole3 * epipole3.transpose() - Eigen::Matrix3d::Identity();
   for (int i = 0; i < 3; ++i) {

@@ -5,7 +5,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "solver_utils.h"
+#include "input_checks.h"
+#include "two_view_geometry.h"
 
 namespace trigrav {
 

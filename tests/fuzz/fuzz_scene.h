@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "fuzz_input.h"
-#include "trigrav/initializers/synthetic_scene.h"
+#include "trigrav/evaluation/synthetic_scene.h"
 
 namespace trigrav {
 namespace fuzz {

@@ -29,7 +29,7 @@ namespace trigrav {
 namespace fuzz {
 namespace {
 
-constexpr int kNumSolvers = 6;
+constexpr int kNumSolvers = static_cast<int>(kInitialSolvers.size());
 constexpr int kMaxIterations = 64;
 constexpr int kMaxTriplets = 40;
 
@@ -86,12 +86,9 @@ ThreeViewObservations DecodeObservations(FuzzInput* input) {
 
 bool IsValid(const ThreeViewObservations& observations, const RobustThreeViewOptions& options) {
   if (static_cast<int>(options.solver) >= kNumSolvers) return false;
-  if (!(options.max_tilt_correction_deg >= 0.0 && options.max_tilt_correction_deg < 90.0)) {
-    return false;
-  }
   try {
     observations.Check();
-    options.ransac.Check();
+    options.Check();
   } catch (const std::invalid_argument&) {
     return false;
   }
@@ -126,11 +123,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   TRIGRAV_FUZZ_CHECK(estimate.pose.IsFinite(), "non-finite pose");
   TRIGRAV_FUZZ_CHECK(estimate.inliers.size() == observations.size(), "one inlier flag per triplet");
   TRIGRAV_FUZZ_CHECK(
-      estimate.num_inliers == std::count_if(estimate.inliers.begin(), estimate.inliers.end(),
+      estimate.ransac.num_inliers == std::count_if(estimate.inliers.begin(), estimate.inliers.end(),
                                             [](char flag) { return flag != 0; }),
       "num_inliers differs from the flags set");
-  TRIGRAV_FUZZ_CHECK(estimate.num_inliers >= MinimalSampleSize(options.solver),
+  TRIGRAV_FUZZ_CHECK(estimate.ransac.num_inliers >= MinimalSampleSize(options.solver),
                      "fewer inliers than a minimal sample");
-  TRIGRAV_FUZZ_CHECK(estimate.iterations <= options.ransac.max_iterations, "too many iterations");
+  TRIGRAV_FUZZ_CHECK(estimate.ransac.iterations <= options.ransac.max_iterations, "too many iterations");
   return 0;
 }

@@ -1,4 +1,7 @@
-# Installs the built trigrav into a scratch prefix, then configures, builds and runs the consumer.
+# Installs trigrav into a scratch prefix, then configures, builds and runs the consumer against it.
+#   -DTRIGRAV_BINARY_DIR=<build>   install that build as it is, or
+#   -DTRIGRAV_SOURCE_DIR=<source> -DSHARED=ON   first build the libraries alone from the source
+#                                               (BUILD_SHARED_LIBS=ON, no tests or tools)
 file(REMOVE_RECURSE ${WORK_DIR})
 function(run)
   execute_process(COMMAND ${ARGV} RESULT_VARIABLE result)
@@ -6,8 +9,16 @@ function(run)
     message(FATAL_ERROR "failed (${result}): ${ARGV}")
   endif()
 endfunction()
+if(TRIGRAV_SOURCE_DIR)
+  set(TRIGRAV_BINARY_DIR ${WORK_DIR}/trigrav)
+  run(${CMAKE_COMMAND} -S ${TRIGRAV_SOURCE_DIR} -B ${TRIGRAV_BINARY_DIR} -DCMAKE_BUILD_TYPE=Release
+      -DBUILD_SHARED_LIBS=${SHARED} -DTRIGRAV_BUILD_TESTS=OFF -DTRIGRAV_BUILD_EXAMPLES=OFF
+      -DTRIGRAV_BUILD_BENCHMARKS=OFF)
+  run(${CMAKE_COMMAND} --build ${TRIGRAV_BINARY_DIR} -j2)
+endif()
 run(${CMAKE_COMMAND} --install ${TRIGRAV_BINARY_DIR} --prefix ${WORK_DIR}/prefix)
 run(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build
-    -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release)
+    -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release
+    -DCMAKE_BUILD_RPATH=${WORK_DIR}/prefix/lib)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/consumer)

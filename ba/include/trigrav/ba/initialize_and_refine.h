@@ -2,14 +2,14 @@
 #define TRIGRAV_BA_INITIALIZE_AND_REFINE_H_
 
 // Initialise-then-refine, the call a pipeline makes: a robust minimal-solver estimate (RANSAC over
-// the chosen method, robust_three_view.h) refined by three-view bundle adjustment on its inliers.
-// PinholeCamera, ThreeViewObservations (three_view_observations.h) and InitialSolver
-// (robust_three_view.h) are the types of issue 5; they are included here, not redefined.
+// the chosen method, robust_three_view.h) refined by three-view bundle adjustment on its inliers
+// (RefineThreeViewPose, refine_three_view_pose.h).
 
-#include <cstdint>
+#include <Eigen/Core>
 #include <string>
 #include <vector>
 
+#include "trigrav/ba/refine_three_view_pose.h"
 #include "trigrav/ba/three_view_bundle_adjustment.h"
 #include "trigrav/initializers/camera_pose.h"
 #include "trigrav/initializers/ransac.h"
@@ -19,22 +19,16 @@
 namespace trigrav {
 
 struct InitializeAndRefineOptions {
-  InitialSolver solver = InitialSolver::kTrifocal3pt;
-  double inlier_threshold_px = 2.0;  // overrides ransac.max_error
+  // The initial estimate: solver, RANSAC (robust.ransac.max_error is the one inlier threshold, in
+  // pixels, of RANSAC and of the re-classification; robust.ransac.seed its seed) and the tilt
+  // correction bound (kTiltCorrectionFromGravitySigma by default: 4 sqrt(2)
+  // bundle_adjustment.gravity_sigma_deg with the gravity-prior model, 0 with yaw-only).
+  RobustThreeViewOptions robust;
   bool refine = true;
-  std::uint64_t seed = 0;  // overrides ransac.seed
   // After a refinement, the triplets are re-classified against the refined pose (same threshold)
   // and, if the inlier set changed, the refinement is run again from the refined pose, up to this
   // many times. Recovers inliers a noisy minimal model missed.
   int reclassification_rounds = 1;
-  // RANSAC settings other than max_error and seed.
-  RansacOptions ransac;
-  // With the gravity-prior rotation model, which declares the gravity uncertain: RANSAC's local
-  // optimisation may correct the relative tilt by up to 4 sqrt(2) gravity_sigma_deg, at most
-  // 45 deg (RobustThreeViewOptions::max_tilt_correction_deg; the relative tilt of two cameras
-  // exceeds that bound with probability 3e-4). false keeps every RANSAC model upright, as in the
-  // paper. With yaw-only, every RANSAC model is upright either way.
-  bool correct_tilt_in_ransac = true;
   // Rotation model, loss and its scale, gravity sigma, iterations, threads, linear solver.
   ThreeViewBundleAdjustmentOptions bundle_adjustment;
 
@@ -42,26 +36,30 @@ struct InitializeAndRefineOptions {
   void Check() const;
 };
 
+// Wall-clock time of each stage of a call, in seconds.
+struct ThreeViewEstimateTimings {
+  double ransac_s = 0.0;
+  double refinement_s = 0.0;  // every bundle adjustment and re-classification
+  double total_s = 0.0;
+};
+
 struct ThreeViewEstimate {
   bool success = false;
-  std::string message;        // why not, when !success; a note when refinement fell back
-  ThreeViewPose initial;      // RANSAC winner, before refinement
-  ThreeViewPose refined;      // after Ceres (== initial when refine is false or Ceres failed)
-  std::vector<char> inliers;  // per triplet: inliers of `refined` (those the refinement used)
+  std::string message;  // why not, when !success; a note when the refinement fell back
+  // The RANSAC winner: pose, inliers and statistics (ransac.num_inliers inliers).
+  ThreeViewPose initial;
+  std::vector<char> initial_inliers;
+  RansacStatistics ransac;
+  // The answer: the refined pose, or the initial one when refine is false or the refinement failed.
+  ThreeViewPose refined;
+  std::vector<char> inliers;  // per triplet: inliers of `refined` (those the last refinement used)
   int num_inliers = 0;
-  std::vector<char> initial_inliers;  // per triplet: inliers of the RANSAC winner
-  int num_initial_inliers = 0;
-  int refinement_runs = 0;      // bundle adjustments run (1 + re-classification rounds used)
-  bool refinement_ran = false;  // Ceres produced `refined`
-  int ransac_iterations = 0;
-  int ba_iterations = 0;      // summed over refinement runs
-  int ba_num_points = 0;      // triplets in the last bundle adjustment
-  double initial_cost = 0.0;  // Ceres cost before the first / after the last refinement run
-  double final_cost = 0.0;
-  std::string ceres_brief_report;
-  double ransac_time_s = 0.0;
-  double ba_time_s = 0.0;  // problem building + solving
-  double total_time_s = 0.0;
+  // The bundle adjustment that produced `refined` (the last successful run), with the refined
+  // points; when none succeeded, the first run, its summary.success false and the reason in its
+  // summary.message.
+  ThreeViewRefinement refinement;
+  int refinement_runs = 0;  // successful bundle adjustments (1 + re-classification rounds used)
+  ThreeViewEstimateTimings timings;
 };
 
 // Throws std::invalid_argument for invalid observations (ThreeViewObservations::Check) or options.

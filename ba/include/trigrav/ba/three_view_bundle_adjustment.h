@@ -63,18 +63,24 @@ struct ThreeViewBundleAdjustmentOptions {
   void Check() const;
 };
 
+// The one refinement summary: what a bundle adjustment did (the refined pose and points are held by
+// the adjuster, and returned by RefineThreeViewPose).
 struct ThreeViewBundleAdjustmentSummary {
   bool success = false;  // Ceres ran and returned a usable (finite) solution
   std::string message;   // why not, when !success
-  ThreeViewPose pose;    // refined, |cam2_from_cam1.Center()| = 1
   int num_points = 0;    // triplets in the problem
   int num_residual_blocks = 0;
-  double initial_cost = 0.0;  // Ceres cost 1/2 sum rho(|r|^2)
-  double final_cost = 0.0;
-  int iterations = 0;  // successful + unsuccessful steps
-  ceres::TerminationType termination = ceres::FAILURE;
   double solve_time_s = 0.0;
-  std::string brief_report;  // ceres::Solver::Summary::BriefReport()
+  // The full report of ceres::Solve (costs 1/2 sum rho(|r|^2), steps, termination, timings).
+  ceres::Solver::Summary ceres_summary;
+
+  double InitialCost() const { return ceres_summary.initial_cost; }
+  double FinalCost() const { return ceres_summary.final_cost; }
+  // Successful + unsuccessful steps.
+  int Iterations() const {
+    return ceres_summary.num_successful_steps + ceres_summary.num_unsuccessful_steps;
+  }
+  std::string BriefReport() const { return ceres_summary.BriefReport(); }
 };
 
 // Owns the ceres::Problem of a three-view refinement. Usage:
@@ -98,7 +104,7 @@ class ThreeViewBundleAdjuster {
   // triangulated or lie behind a camera are left out. Returns false with message() if the pose is
   // not finite, |C_2| = 0 or fewer than 3 triplets remain.
   bool Build(const ThreeViewPose& initial);
-  // Runs Ceres. Requires a successful Build().
+  // Runs Ceres. Requires a successful Build(). On failure the parameters are restored.
   ThreeViewBundleAdjustmentSummary Solve();
 
   const std::string& message() const { return message_; }

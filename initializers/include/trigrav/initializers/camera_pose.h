@@ -18,7 +18,13 @@ struct CameraPose {
   Eigen::Vector3d Apply(const Eigen::Vector3d& point_in_ref) const { return R * point_in_ref + t; }
   // True when every entry of R and t is finite.
   bool IsFinite() const;
+
+  // The inverse transform: if *this is b_from_a, Inverse() is a_from_b = [R^T | -R^T t].
+  CameraPose Inverse() const;
 };
+
+// Composition c_from_a = c_from_b * b_from_a: x_c = R_cb (R_ba x_a + t_ba) + t_cb.
+CameraPose operator*(const CameraPose& c_from_b, const CameraPose& b_from_a);
 
 // Poses of cameras 2 and 3 relative to camera 1. Scale convention of every trigrav solver:
 // |cam2_from_cam1.Center()| = 1, so |cam3_from_cam1.Center()| is the observable relative scale.
@@ -26,6 +32,8 @@ struct ThreeViewPose {
   CameraPose cam2_from_cam1;
   CameraPose cam3_from_cam1;
 
+  // cam3_from_cam1 * cam2_from_cam1.Inverse().
+  CameraPose Cam3FromCam2() const { return cam3_from_cam1 * cam2_from_cam1.Inverse(); }
   bool IsFinite() const { return cam2_from_cam1.IsFinite() && cam3_from_cam1.IsFinite(); }
 };
 

@@ -34,17 +34,22 @@ struct RansacOptions {
   void Check() const;
 };
 
+// What a RANSAC run did: the one statistics struct of every robust estimate in trigrav.
+struct RansacStatistics {
+  int num_inliers = 0;              // of the returned model
+  int iterations = 0;               // samples drawn
+  int num_models_scored = 0;
+  int num_local_optimizations = 0;
+  double msac_cost = std::numeric_limits<double>::infinity();  // sum_i min(e_i^2, max_error^2)
+};
+
 template <typename Model>
 struct RansacReport {
   bool success = false;
   std::string message;              // why not, when !success
   Model model{};
   std::vector<char> inlier_mask;    // inlier_mask[i] != 0 iff error(model, i) <= max_error
-  int num_inliers = 0;
-  int iterations = 0;               // samples drawn
-  int num_models_scored = 0;
-  int num_local_optimizations = 0;
-  double msac_cost = std::numeric_limits<double>::infinity();  // sum_i min(e_i^2, max_error^2)
+  RansacStatistics statistics;
 };
 
 // Generic RANSAC with MSAC scoring, adaptive stopping and local optimisation (Chum, Matas, Kittler,
@@ -174,7 +179,7 @@ RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
 
   // Scores a candidate; on improvement keeps it and updates the stopping criterion.
   auto consider = [&](const Model& model) {
-    ++report.num_models_scored;
+    ++report.statistics.num_models_scored;
     const double cost =
         internal::MsacCost(estimator, model, squared_threshold, best_cost, &candidate_errors);
     candidate_errors_complete = std::isfinite(cost);
@@ -190,8 +195,8 @@ RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
     return true;
   };
 
-  for (report.iterations = 0;
-       report.iterations < std::min(required, options.max_iterations); ++report.iterations) {
+  for (report.statistics.iterations = 0;
+       report.statistics.iterations < std::min(required, options.max_iterations); ++report.statistics.iterations) {
     internal::DrawSample<kSampleSize>(static_cast<int>(n), &rng, &sample);
     models.clear();
     estimator.generate_models(sample, &models);
@@ -211,7 +216,7 @@ RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
           (options.local_optimization_threshold_multiplier -
            (options.local_optimization_threshold_multiplier - 1.0) * fraction);
       if (internal::CollectInliers(*current_errors, threshold, &local_inliers) < kSampleSize) break;
-      ++report.num_local_optimizations;
+      ++report.statistics.num_local_optimizations;
       if (!estimator.refine_model(local_inliers, &current)) break;
       if (consider(current)) {
         current_errors = &best_errors;
@@ -228,8 +233,8 @@ RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
     report.message = "no model explains at least a minimal sample";
     return report;
   }
-  report.msac_cost = best_cost;
-  report.num_inliers = best_inliers;
+  report.statistics.msac_cost = best_cost;
+  report.statistics.num_inliers = best_inliers;
   report.inlier_mask.assign(n, 0);
   for (const int i : inliers) report.inlier_mask[i] = 1;  // inliers of the best model
   report.success = true;

@@ -5,31 +5,16 @@
 #include <vector>
 
 #include "trigrav/initializers/camera_pose.h"
+#include "trigrav/initializers/initial_solver.h"
 #include "trigrav/initializers/ransac.h"
 #include "trigrav/initializers/three_view_observations.h"
 
 namespace trigrav {
 
-// The minimal solvers a robust estimate can be seeded with: the paper's methods and its baselines.
-enum class InitialSolver {
-  kTrifocal3pt,        // decoupled 3-point, gravity-aware (trifocal_3pt.h): the default
-  kTrifocal3ptSextic,  // the paper's 3-point system (3pt-Our-3view), gravity-aware
-  kTrifocal4pt,        // 4-point linear trifocal (4pt-Our-3view), gravity-aware
-  kTrifocalLinear,     // normalised linear trifocal tensor, 7 triplets (7pt-Hartley-3view)
-  kEssential5pt,       // Nister's five-point on pairs (1,2) and (1,3) (5pt-Nister-2view)
-  kEssential8pt,       // normalised eight-point on pairs (1,2) and (1,3) (8pt-Hartley-2view)
-};
-
-// "3pt", "3pt-sextic", "4pt", "7pt-linear", "5pt", "8pt".
-const char* InitialSolverName(InitialSolver solver);
-// Inverse of InitialSolverName; false for an unknown name.
-bool ParseInitialSolver(const std::string& name, InitialSolver* solver);
-// Triplets in a minimal sample of the method (3, 3, 4, 7, 5, 8).
-int MinimalSampleSize(InitialSolver solver);
-
 struct RobustThreeViewOptions {
   InitialSolver solver = InitialSolver::kTrifocal3pt;
-  // ransac.max_error is the inlier threshold in pixels, the same for every method. Local
+  // ransac.max_error is the inlier threshold in pixels, the same for every method (three_view_error.h
+  // says what it measures); ransac.seed makes a run reproducible. Local
   // optimisation re-estimates from the inliers with the method's own non-minimal solver: the 4-point
   // solver for the gravity-aware methods, the eight-point solver for the two-view ones, the linear
   // tensor for 7pt-linear.
@@ -43,20 +28,26 @@ struct RobustThreeViewOptions {
   // tilt error e moves distant points by about f e pixels (0.14 deg at f = 719 px: 1.8 px); under a
   // tight threshold every upright model of the true motion then loses its distant points, and
   // RANSAC may prefer a wrong motion. The minimal models stay upright; the estimate carries the
-  // corrected tilt. No effect without ransac.local_optimization. Throws std::invalid_argument
-  // outside [0, 90).
-  double max_tilt_correction_deg = 0.0;
+  // corrected tilt. No effect without ransac.local_optimization.
+  // kTiltCorrectionFromGravitySigma (the default) derives the bound from the gravity's uncertainty
+  // where one is known: InitializeAndRefine with the gravity-prior rotation model uses
+  // 4 sqrt(2) gravity_sigma_deg (at most 45 deg; the relative tilt of two cameras with N(0, sigma^2)
+  // pitch and roll errors exceeds it with probability 3e-4); with the yaw-only model, which declares
+  // the gravity exact, and in EstimateThreeViewPoseRobust, which knows no sigma, it means 0.
+  // Otherwise throws std::invalid_argument outside [0, 90).
+  static constexpr double kTiltCorrectionFromGravitySigma = -1.0;
+  double max_tilt_correction_deg = kTiltCorrectionFromGravitySigma;
+
+  // Throws std::invalid_argument naming the first bad field.
+  void Check() const;
 };
 
 struct RobustThreeViewEstimate {
   bool success = false;
-  std::string message;              // why not, when !success
-  ThreeViewPose pose;               // original camera frames, |cam2_from_cam1.Center()| = 1
-  std::vector<char> inliers;        // per triplet
-  int num_inliers = 0;
-  int iterations = 0;
-  int num_models_scored = 0;
-  int num_local_optimizations = 0;
+  std::string message;        // why not, when !success
+  ThreeViewPose pose;         // original camera frames, |cam2_from_cam1.Center()| = 1
+  std::vector<char> inliers;  // per triplet; ransac.num_inliers of them are set
+  RansacStatistics ransac;
 };
 
 // Robust three-view relative pose from pixel triplets with outliers: RANSAC (ransac.h) over the chosen

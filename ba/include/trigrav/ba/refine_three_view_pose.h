@@ -1,0 +1,40 @@
+#ifndef TRIGRAV_BA_REFINE_THREE_VIEW_POSE_H_
+#define TRIGRAV_BA_REFINE_THREE_VIEW_POSE_H_
+
+// Refine-only: the call a pipeline with its own RANSAC (or a second pass) makes. One three-view
+// bundle adjustment (three_view_bundle_adjustment.h) of a given pose on given inlier triplets.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "trigrav/ba/three_view_bundle_adjustment.h"
+#include "trigrav/initializers/camera_pose.h"
+#include "trigrav/initializers/three_view_observations.h"
+
+namespace trigrav {
+
+struct ThreeViewRefinement {
+  // The refined pose, |cam2_from_cam1.Center()| = 1. When !summary.success: the initial pose,
+  // rescaled to |C2| = 1 if the problem could be built.
+  ThreeViewPose pose;
+  // Triplets in the problem (indices into the observations): the inliers that could be
+  // triangulated in front of all three cameras.
+  std::vector<int> triplets;
+  // The refined points in camera 1's frame, one per entry of `triplets` (empty when the problem
+  // could not be built).
+  std::vector<Eigen::Vector3d> points_in_cam1;
+  ThreeViewBundleAdjustmentSummary summary;  // success, message, costs, the full Ceres summary
+};
+
+// Refines `initial` on the triplets whose `inliers` entry is non-zero (inliers.size() ==
+// observations.size()). Throws std::invalid_argument for invalid observations or options or a mask
+// of the wrong size. A pose that is not finite, |C2| = 0, fewer than 3 triangulable triplets or a
+// Ceres failure give summary.success == false with the reason in summary.message.
+ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observations,
+                                        const ThreeViewPose& initial,
+                                        const std::vector<char>& inliers,
+                                        const ThreeViewBundleAdjustmentOptions& options);
+
+}  // namespace trigrav
+
+#endif  // TRIGRAV_BA_REFINE_THREE_VIEW_POSE_H_

@@ -1,0 +1,39 @@
+#include "trigrav/ba/refine_three_view_pose.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace trigrav {
+
+ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observations,
+                                        const ThreeViewPose& initial,
+                                        const std::vector<char>& inliers,
+                                        const ThreeViewBundleAdjustmentOptions& options) {
+  observations.Check();
+  options.Check();
+  if (inliers.size() != observations.size()) {
+    throw std::invalid_argument(
+        "trigrav: RefineThreeViewPose: the inlier mask has " + std::to_string(inliers.size()) +
+        " entries for " + std::to_string(observations.size()) + " triplets");
+  }
+  ThreeViewRefinement refinement;
+  refinement.pose = initial;
+  if (std::none_of(inliers.begin(), inliers.end(), [](char inlier) { return inlier != 0; })) {
+    refinement.summary.message = "no inlier triplets to refine on";
+    return refinement;
+  }
+  ThreeViewBundleAdjuster adjuster(
+      observations, ThreeViewBundleAdjustmentConfig::FromInlierMask(inliers), options);
+  if (!adjuster.Build(initial)) {
+    refinement.summary.message = adjuster.message();
+    return refinement;
+  }
+  refinement.summary = adjuster.Solve();
+  refinement.pose = adjuster.CurrentPose();
+  refinement.triplets = adjuster.triplet_indices();
+  refinement.points_in_cam1 = adjuster.points();
+  return refinement;
+}
+
+}  // namespace trigrav

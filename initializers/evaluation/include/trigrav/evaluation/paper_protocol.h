@@ -1,0 +1,84 @@
+#ifndef TRIGRAV_EVALUATION_PAPER_PROTOCOL_H_
+#define TRIGRAV_EVALUATION_PAPER_PROTOCOL_H_
+
+// The levels of the paper's synthetic experiments (Section IV; protocol of math note section 6),
+// the seeds of their scenes and their accuracy CSV, shared by the tools that run them:
+// paper_experiments (stability, noise, pitch, roll) and initialize_and_refine_synthetic
+// --experiment=sample20. A level's trials run in chunks whose seeds derive from the level's index in
+// PaperLevels(), so that a tool running some of the levels draws the same scenes as a run of all.
+
+#include <cstddef>
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "trigrav/evaluation/pooled_errors.h"
+#include "trigrav/initializers/camera_pose.h"
+
+namespace trigrav {
+
+enum class PaperExperiment { kStability, kNoise, kPitch, kRoll, kSample20 };
+
+// "stability", "noise", "pitch", "roll", "sample20".
+const char* PaperExperimentName(PaperExperiment experiment);
+
+struct PaperLevel {
+  PaperExperiment experiment = PaperExperiment::kStability;
+  double noise_px = 0.0;   // image noise sigma
+  double pitch_deg = 0.0;  // IMU pitch noise sigma
+  double roll_deg = 0.0;   // IMU roll noise sigma
+  int trials = 0;          // scenes
+};
+
+// In this order: stability (5000 noise-free scenes); noise (0, 0.5, 1, 1.5, 2 px, exact IMU); pitch
+// and roll (0, 0.25, 0.5, 0.75, 1 deg at 1 px); sample20 (the noise levels, then the non-zero pitch
+// and roll levels at 1 px); 1000 scenes per level except stability. quick: 200, 40 and 6 scenes,
+// sample20 at 0 and 1 px only. trial_scale multiplies every count (rounded, at least 1).
+std::vector<PaperLevel> PaperLevels(bool quick, double trial_scale);
+
+struct PaperChunk {
+  std::size_t level = 0;  // index into the levels
+  int trials = 0;
+  std::uint64_t seed = 0;  // of the chunk's std::mt19937_64 scene generator
+};
+
+// The chunks of the levels of the given experiments, in level order: 25 trials (sample20, whose
+// trials are slow) or 250, chunk c of level l seeded with seed * 1000003 + l * 10007 + c * 101.
+std::vector<PaperChunk> PaperChunks(const std::vector<PaperLevel>& levels,
+                                    const std::vector<PaperExperiment>& experiments,
+                                    std::uint64_t seed);
+
+// The errors of one method at one level. Failures are counted, not pooled: the medians are over the
+// estimates that returned a pose.
+struct LevelErrors {
+  PooledErrors pooled;
+  int trials = 0;
+  int failures = 0;
+
+  // One trial: a failure if !ok or the pose is not finite. relative_scale_known = false (a pairwise
+  // peer without common inliers, whose |C3| is a placeholder) counts the relative-scale error as
+  // +inf.
+  void Add(const ThreeViewPose& ground_truth,
+           bool ok,
+           const ThreeViewPose& pose,
+           bool relative_scale_known = true);
+  void Append(const LevelErrors& other);
+};
+
+// The accuracy CSV of the experiments (stability.csv, noise.csv, pitch.csv, roll.csv,
+// sample20.csv): one row per method (and stage) and level, 6 significant digits: the median and the
+// 90 % quantile (statistics.h) of the pooled rotation and translation errors (deg) and the median
+// relative-scale error. with_stage adds a column `stage` after `method` ("raw" for a RANSAC
+// estimate, "refined" for its bundle adjustment); rows then pass a non-empty stage.
+void WritePaperAccuracyHeader(bool with_stage, std::ostream* csv);
+void WritePaperAccuracyRow(const PaperLevel& level,
+                           const std::string& method,
+                           const std::string& stage,
+                           int sample_size,
+                           const LevelErrors& errors,
+                           std::ostream* csv);
+
+}  // namespace trigrav
+
+#endif  // TRIGRAV_EVALUATION_PAPER_PROTOCOL_H_

@@ -1,0 +1,114 @@
+// Internal null-space routines of the minimal solvers: the null vector of a 3x3 matrix, of a wide
+// (C-1) x C system, and the smallest right singular vector of a triangular factor, with the rank
+// tolerances that flag a null space of more than one dimension. Not installed; not part of the
+// public API. Fixed sizes throughout: no heap allocation.
+#ifndef TRIGRAV_INITIALIZERS_SRC_NULL_SPACE_H_
+#define TRIGRAV_INITIALIZERS_SRC_NULL_SPACE_H_
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Core>
+
+namespace trigrav {
+namespace internal {
+
+// Unit vector spanning the (numerical) null space of a 3x3 matrix: its smallest right singular
+// vector, by inverse iteration on the adjugate (adj(M^T M) = adj(M) adj(M)^T). Zero if M has rank
+// <= 1.
+Eigen::Vector3d NullVector3(const Eigen::Matrix3d& M);
+
+// Relative size below which a pivot counts as zero when deciding that a minimal system has more
+// than a one-dimensional null space (degenerate input).
+constexpr double kRankTolerance = 1e-10;
+// The same for the diagonal of a triangular factor, which may come from the ridged Gram matrix of
+// StackedTriangularFactor (null directions then sit near sqrt(1e-15) = 3e-8 of the largest entry,
+// plus the rounding of a rank-deficient Cholesky factorisation).
+constexpr double kTriangularRankTolerance = 1e-6;
+
+// True if the upper-triangular R (R^T R = A^T A) shows a null space of A of dimension 2 or more: a
+// triangular matrix of rank n - 2 or less has at least two (numerically) zero diagonal entries.
+template <int N>
+bool HasMultipleNullDirections(const Eigen::Matrix<double, N, N>& R) {
+  const Eigen::Matrix<double, N, 1> diagonal = R.diagonal().cwiseAbs();
+  const double tolerance = kTriangularRankTolerance * diagonal.maxCoeff();
+  return (diagonal.array() <= tolerance).count() >= 2;
+}
+
+// One step of the inverse iterations here: makes the new unit iterate *next the current one *x,
+// its sign first turned to agree with *x. True once they should stop: at convergence, or once
+// rounding noise keeps the step from shrinking (*previous_change holds the last squared step).
+template <typename Vector>
+bool AcceptInverseIterate(Vector* next, Vector* x, double* previous_change) {
+  if (next->dot(*x) < 0.0) *next = -*next;
+  const double change = (*next - *x).squaredNorm();
+  *x = *next;
+  if (change < 1e-30 || (change < 1e-20 && change > 0.25 * *previous_change)) return true;
+  *previous_change = change;
+  return false;
+}
+
+// Smallest right singular vector (unit) of an upper-triangular n x n matrix R, by inverse iteration
+// x <- (R^T R)^-1 x started from R^-1 e_n. Diagonal entries below eps * max|diag| are raised to
+// that floor, which keeps the solves finite and makes the exact null vector a fixed point.
+template <int N>
+Eigen::Matrix<double, N, 1> SmallestRightSingularVectorOfTriangular(
+    const Eigen::Matrix<double, N, N>& R) {
+  Eigen::Matrix<double, N, N> R_floor = R.template triangularView<Eigen::Upper>();
+  const double floor =
+      std::numeric_limits<double>::epsilon() * std::max(R.diagonal().cwiseAbs().maxCoeff(), 1e-300);
+  for (int i = 0; i < N; ++i) {
+    if (std::abs(R_floor(i, i)) < floor) R_floor(i, i) = R_floor(i, i) < 0.0 ? -floor : floor;
+  }
+  Eigen::Matrix<double, N, 1> x = Eigen::Matrix<double, N, 1>::Unit(N - 1);
+  R_floor.template triangularView<Eigen::Upper>().solveInPlace(x);
+  x.normalize();
+  constexpr int kMaxIterations = 100;
+  double previous_change = std::numeric_limits<double>::infinity();
+  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+    Eigen::Matrix<double, N, 1> next = x;
+    R_floor.transpose().template triangularView<Eigen::Lower>().solveInPlace(next);
+    R_floor.template triangularView<Eigen::Upper>().solveInPlace(next);
+    next.normalize();
+    if (AcceptInverseIterate(&next, &x, &previous_change)) break;
+  }
+  return x;
+}
+
+// Unit null vector of an (C-1) x C matrix, by Gaussian elimination with partial pivoting and back
+// substitution with x_C = 1: half the flops of a QR for the exactly determined minimal systems.
+// Returns the zero vector when the matrix is not of full row rank (a pivot below kRankTolerance
+// times the largest entry): its null space is then more than one-dimensional and no single answer
+// exists.
+template <int C>
+Eigen::Matrix<double, C, 1> NullVectorOfWideMatrix(const Eigen::Matrix<double, C - 1, C>& A) {
+  constexpr int R = C - 1;
+  // Row operations span the full fixed-size row (the zeros left of the pivot included): more flops
+  // than trimmed rows, but unrolled and vectorised, which is faster at this size.
+  using Row = Eigen::Matrix<double, 1, C>;
+  std::array<Row, R> U;
+  for (int i = 0; i < R; ++i) U[i] = A.row(i);
+  const double tolerance = kRankTolerance * A.cwiseAbs().maxCoeff();
+  if (!(tolerance > 0.0)) return Eigen::Matrix<double, C, 1>::Zero();
+  for (int k = 0; k < R; ++k) {
+    int pivot = k;
+    for (int i = k + 1; i < R; ++i) {
+      if (std::abs(U[i][k]) > std::abs(U[pivot][k])) pivot = i;
+    }
+    std::swap(U[k], U[pivot]);
+    if (!(std::abs(U[k][k]) > tolerance)) return Eigen::Matrix<double, C, 1>::Zero();
+    const double inverse_pivot = 1.0 / U[k][k];
+    for (int i = k + 1; i < R; ++i) U[i] -= (U[i][k] * inverse_pivot) * U[k];
+  }
+  Eigen::Matrix<double, C, 1> x = Eigen::Matrix<double, C, 1>::Zero();
+  x[C - 1] = 1.0;
+  for (int k = R - 1; k >= 0; --k) x[k] = -U[k].dot(x.transpose()) / U[k][k];
+  return x.normalized();
+}
+
+}  // namespace internal
+}  // namespace trigrav
+
+#endif  // TRIGRAV_INITIALIZERS_SRC_NULL_SPACE_H_

@@ -1,0 +1,99 @@
+// Internal triangular factors R (R^T R = A^T A) of the solvers' linear systems: Householder
+// triangularisation of small systems, the Cholesky factor of the Gram matrix for tall ones, and a
+// stacked system factored block by block without forming it. Not installed; not part of the public
+// API. Fixed sizes and stack storage throughout: no heap allocation.
+#ifndef TRIGRAV_INITIALIZERS_SRC_TRIANGULAR_FACTOR_H_
+#define TRIGRAV_INITIALIZERS_SRC_TRIANGULAR_FACTOR_H_
+
+#include <algorithm>
+#include <cstddef>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+namespace trigrav {
+namespace internal {
+
+// Upper Cholesky factor R (R^T R = G + ridge I) of a Gram matrix G = A^T A, with a relative ridge
+// of 1e-15 so that an exact null space stays factorable.
+template <int C>
+Eigen::Matrix<double, C, C> CholeskyFactorOfGram(Eigen::Matrix<double, C, C> gram) {
+  const double ridge = 1e-15 * gram.trace();
+  gram.diagonal().array() += ridge > 0.0 ? ridge : 1e-300;
+  return Eigen::LLT<Eigen::Matrix<double, C, C>>(gram).matrixU();
+}
+
+// Upper-triangular C x C factor R of a matrix with C columns (R^T R = A^T A), padded with zero rows
+// when A has fewer rows than columns. Up to kMaxHouseholderRows rows: unblocked Householder
+// triangularisation in place (for the small fixed-size systems of the solvers several times faster
+// than Eigen's blocked HouseholderQR, and allocation-free). Taller systems, the non-minimal
+// least-squares solves on many inliers, use CholeskyFactorOfGram(A^T A): 4x fewer flops, no copy of
+// A; the squared conditioning is far below the noise of such problems, and the solvers polish
+// afterwards.
+constexpr int kMaxHouseholderRows = 64;
+
+template <typename Derived>
+Eigen::Matrix<double, Derived::ColsAtCompileTime, Derived::ColsAtCompileTime> TriangularFactor(
+    const Eigen::MatrixBase<Derived>& A_in) {
+  constexpr int C = Derived::ColsAtCompileTime;
+  if (Derived::RowsAtCompileTime == Eigen::Dynamic && A_in.rows() > kMaxHouseholderRows) {
+    Eigen::Matrix<double, C, C> gram = Eigen::Matrix<double, C, C>::Zero();
+    gram.template selfadjointView<Eigen::Lower>().rankUpdate(A_in.transpose());
+    return CholeskyFactorOfGram<C>(gram);
+  }
+  using Column =
+      Eigen::Matrix<double, Derived::RowsAtCompileTime, 1, 0, Derived::MaxRowsAtCompileTime, 1>;
+  typename Derived::PlainObject A = A_in;
+  const Eigen::Index m = A.rows();
+  const Eigen::Index steps = std::min<Eigen::Index>(m, C);
+  for (Eigen::Index j = 0; j < steps; ++j) {
+    // Reflector H = I - 2 v v^T / (v^T v), v = x - alpha e_j with x = column j below row j, mapping
+    // x to alpha e_j. v is kept at full column length (zeros above j) so the updates are
+    // fixed-size.
+    Column v = A.col(j);
+    v.head(j).setZero();
+    const double x0 = v[j];
+    const double norm = v.norm();
+    const double alpha = x0 <= 0.0 ? norm : -norm;
+    v[j] = x0 - alpha;
+    const double v_squared = v.squaredNorm();
+    if (v_squared > 0.0) {
+      const double scale = 2.0 / v_squared;
+      for (Eigen::Index k = j + 1; k < C; ++k) A.col(k) -= (scale * v.dot(A.col(k))) * v;
+    }
+    A.col(j).tail(m - j).setZero();
+    A(j, j) = v_squared > 0.0 ? alpha : x0;
+  }
+  Eigen::Matrix<double, C, C> R = Eigen::Matrix<double, C, C>::Zero();
+  R.topRows(steps) = A.topRows(steps);
+  return R;
+}
+
+// Triangular factor R (R^T R = sum_n B_n^T B_n) of the system stacked from the row blocks
+// B_n = block(n), n < count (each with C columns): Householder on the stacked rows while they fit
+// in kMaxHouseholderRows (on the stack, no allocation), otherwise the Cholesky factor of the Gram
+// matrix streamed block by block, so a tall system is never formed.
+template <int C, typename BlockFunction>
+Eigen::Matrix<double, C, C> StackedTriangularFactor(std::size_t count, BlockFunction block) {
+  using Block = decltype(block(std::size_t{0}));
+  constexpr int kBlockRows = Block::RowsAtCompileTime;
+  if (count * kBlockRows <= static_cast<std::size_t>(kMaxHouseholderRows)) {
+    Eigen::Matrix<double, Eigen::Dynamic, C, 0, kMaxHouseholderRows, C> stacked(count * kBlockRows,
+                                                                                C);
+    for (std::size_t n = 0; n < count; ++n) {
+      stacked.template middleRows<kBlockRows>(n * kBlockRows) = block(n);
+    }
+    return TriangularFactor(stacked);
+  }
+  Eigen::Matrix<double, C, C> gram = Eigen::Matrix<double, C, C>::Zero();
+  for (std::size_t n = 0; n < count; ++n) {
+    const Block B = block(n);
+    gram.noalias() += B.transpose().lazyProduct(B);
+  }
+  return CholeskyFactorOfGram<C>(gram);
+}
+
+}  // namespace internal
+}  // namespace trigrav
+
+#endif  // TRIGRAV_INITIALIZERS_SRC_TRIANGULAR_FACTOR_H_

@@ -1,0 +1,127 @@
+#include "trigrav/initializers/ransac.h"
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace trigrav {
+namespace {
+
+// Robust 1-D location: the model is a number, one datum is a minimal sample, refinement takes the
+// mean of the inliers. Small enough to check the loop itself exactly.
+class LocationEstimator {
+ public:
+  using Model = double;
+  static constexpr int kSampleSize = 1;
+  explicit LocationEstimator(std::vector<double> data) : data_(std::move(data)) {}
+  std::size_t num_data() const { return data_.size(); }
+  void generate_models(const std::array<int, 1>& sample, std::vector<Model>* models) const {
+    models->push_back(data_[sample[0]]);
+  }
+  double error(const Model& model, std::size_t i) const { return std::abs(data_[i] - model); }
+  bool refine_model(const std::vector<int>& inliers, Model* model) const {
+    double sum = 0.0;
+    for (const int i : inliers) sum += data_[i];
+    *model = sum / inliers.size();
+    return true;
+  }
+
+ private:
+  std::vector<double> data_;
+};
+
+std::vector<double> Data(int inliers, int outliers, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(5.0, 0.1);
+  std::uniform_real_distribution<double> uniform(-100.0, 100.0);
+  std::vector<double> data;
+  for (int i = 0; i < inliers; ++i) data.push_back(noise(rng));
+  for (int i = 0; i < outliers; ++i) data.push_back(uniform(rng));
+  return data;
+}
+
+TEST(Ransac, FindsTheInlierModelAndMask) {
+  const LocationEstimator estimator(Data(300, 700, 1));
+  RansacOptions options;
+  options.max_error = 0.5;
+  const RansacReport<double> report = Ransac(estimator, options);
+  ASSERT_TRUE(report.success) << report.message;
+  EXPECT_NEAR(report.model, 5.0, 0.03);
+  int true_inliers_found = 0, false_inliers = 0;
+  for (int i = 0; i < 1000; ++i) {
+    true_inliers_found += i < 300 && report.inlier_mask[i];
+    false_inliers += i >= 300 && report.inlier_mask[i];
+  }
+  EXPECT_GE(true_inliers_found, 295);
+  EXPECT_LE(false_inliers, 5);
+  EXPECT_EQ(report.statistics.num_inliers, true_inliers_found + false_inliers);
+  EXPECT_GT(report.statistics.num_local_optimizations, 0);
+}
+
+TEST(Ransac, StopsAdaptively) {
+  RansacOptions options;
+  options.max_error = 0.5;
+  options.min_iterations = 0;
+  // 90 % inliers, s = 1: log(1e-4) / log(0.1) = 4 samples suffice; 30 % need 26.
+  const RansacReport<double> easy = Ransac(LocationEstimator(Data(900, 100, 2)), options);
+  const RansacReport<double> hard = Ransac(LocationEstimator(Data(300, 700, 2)), options);
+  EXPECT_LE(easy.statistics.iterations, 8);
+  EXPECT_GE(hard.statistics.iterations, 20);
+  EXPECT_LE(hard.statistics.iterations, 60);
+  options.min_iterations = 50;
+  EXPECT_EQ(Ransac(LocationEstimator(Data(900, 100, 2)), options).statistics.iterations, 50);
+  options.max_iterations = 60;
+  options.max_error = 1e-9;  // nothing agrees: runs to the cap
+  EXPECT_EQ(Ransac(LocationEstimator(Data(300, 700, 2)), options).statistics.iterations, 60);
+}
+
+TEST(Ransac, RequiredIterationsIsSafeForTinyInlierRatios) {
+  EXPECT_EQ(internal::RequiredIterations(1.0, 8, 0.99), 0);
+  EXPECT_EQ(internal::RequiredIterations(0.0, 3, 0.99), std::numeric_limits<int>::max());
+  // 1 inlier of 200 with an 8-point sample: w^s = 4e-19 must not round to "no iterations needed".
+  EXPECT_EQ(internal::RequiredIterations(0.005, 8, 0.9999), std::numeric_limits<int>::max());
+  EXPECT_EQ(internal::RequiredIterations(0.5, 3, 0.99), 35);  // log(0.01) / log(7/8) = 34.5
+}
+
+TEST(Ransac, SameSeedSameResultOtherSeedOtherSamples) {
+  const LocationEstimator estimator(Data(300, 700, 3));
+  RansacOptions options;
+  options.max_error = 0.5;
+  options.local_optimization = false;
+  options.seed = 7;
+  const RansacReport<double> a = Ransac(estimator, options);
+  const RansacReport<double> b = Ransac(estimator, options);
+  EXPECT_EQ(a.model, b.model);
+  EXPECT_EQ(a.inlier_mask, b.inlier_mask);
+  EXPECT_EQ(a.statistics.iterations, b.statistics.iterations);
+  options.seed = 8;
+  EXPECT_NE(Ransac(estimator, options).model, a.model);
+}
+
+TEST(Ransac, TooFewDataIsAFailureNotAnException) {
+  const RansacReport<double> report = Ransac(LocationEstimator({}), RansacOptions());
+  EXPECT_FALSE(report.success);
+  EXPECT_FALSE(report.message.empty());
+}
+
+TEST(Ransac, BadOptionsThrow) {
+  const LocationEstimator estimator(Data(10, 0, 4));
+  for (auto mutate : std::vector<void (*)(RansacOptions*)>{
+           [](RansacOptions* o) { o->max_error = 0.0; },
+           [](RansacOptions* o) { o->max_error = NAN; },
+           [](RansacOptions* o) { o->confidence = 1.0; },
+           [](RansacOptions* o) { o->min_iterations = -1; },
+           [](RansacOptions* o) { o->max_iterations = 0; },
+           [](RansacOptions* o) { o->min_iterations = 10, o->max_iterations = 5; }}) {
+    RansacOptions options;
+    mutate(&options);
+    EXPECT_THROW(Ransac(estimator, options), std::invalid_argument);
+  }
+}
+
+}  // namespace
+}  // namespace trigrav

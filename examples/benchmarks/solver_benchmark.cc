@@ -1,9 +1,17 @@
-// Time per call of the minimal solvers on pre-generated noise-free scenes (aligned rays, so only the
-// solver is timed). Counter "found" = fraction of the scenes whose best-ranked solution is within
-// 1e-6 deg of the truth. Built with a peer library (examples/peers/), it also times OpenGV's
-// five-point solvers (BM_Peer/<name>) on the same kind of scenes; their counter "truth_found" is the
-// fraction of scenes with the true essential matrix among the solutions (they return essential
-// matrices, not poses). Run: ./build/examples/solver_benchmark
+// Time per call of the minimal solvers on 100 pre-generated noise-free scenes (seed 2026).
+//   BM_Solver/<method>    every solver of kInitialSolvers at its minimal sample: the gravity-aware
+//                         and trifocal ones on rays already in gravity-aligned frames (only the
+//                         solver is timed), the two-view ones (5pt, 8pt) on pair (1,2) alone;
+//   BM_Solver/<method>/20 the linear solvers (7pt-linear, 8pt) with 20 triplets;
+//   BM_Solver/4pt-note, BM_Solver/4pt-closed-form  4-point variants (math note 3.3 without the
+//                         polish; the paper's closed forms c8-c11), as in minimal_solver_accuracy.
+// Counter "found": the fraction of the scenes whose best-ranked solution is within 1e-6 deg of the
+// truth (two-view solvers, whose solutions are not ranked: with the truth among the solutions).
+// Built with OpenGV (examples/peers/), BM_Peer/<name> times its five-point solvers on the same kind
+// of scenes; their counter "truth_found" is the fraction of scenes with the true essential matrix
+// among the solutions (they return essential matrices, not poses).
+//
+//   solver_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 
 #include <algorithm>
 #include <random>
@@ -16,11 +24,12 @@
 #include "peer_estimators.h"
 #endif
 
+#include "trigrav/evaluation/pose_errors.h"
+#include "trigrav/evaluation/synthetic_scene.h"
 #include "trigrav/initializers/essential_5pt.h"
 #include "trigrav/initializers/essential_8pt.h"
 #include "trigrav/initializers/gravity.h"
-#include "trigrav/evaluation/pose_errors.h"
-#include "trigrav/evaluation/synthetic_scene.h"
+#include "trigrav/initializers/initial_solver.h"
 #include "trigrav/initializers/trifocal_3pt.h"
 #include "trigrav/initializers/trifocal_4pt.h"
 #include "trigrav/initializers/trifocal_linear.h"
@@ -78,56 +87,6 @@ void RunSolverBenchmark(benchmark::State& state, int num_points, Solver solve) {
   state.counters["found"] = static_cast<double>(found) / problems.size();
 }
 
-void BM_Trifocal4pt(benchmark::State& state) {
-  RunSolverBenchmark(state, 4,
-                     [](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
-                       return trigrav::SolveTrifocal4pt(x1, x2, x3, solutions);
-                     });
-}
-BENCHMARK(BM_Trifocal4pt);
-
-// The math note's recommended pipeline: trigrav's default without the polish step.
-void BM_Trifocal4ptNoPolish(benchmark::State& state) {
-  trigrav::Trifocal4ptOptions options;
-  options.polish_iterations = 0;
-  RunSolverBenchmark(state, 4,
-                     [&options](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
-                       return trigrav::SolveTrifocal4pt(x1, x2, x3, options, solutions);
-                     });
-}
-BENCHMARK(BM_Trifocal4ptNoPolish);
-
-// The paper's own 4-point variant: no enforcement, eqs c8-c11, no translation re-solve.
-void BM_Trifocal4ptPaper(benchmark::State& state) {
-  trigrav::Trifocal4ptOptions options;
-  options.recovery = trigrav::Trifocal4ptRecovery::kPaperClosedForm;
-  options.resolve_translations = false;
-  options.polish_iterations = 0;
-  RunSolverBenchmark(state, 4,
-                     [&options](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
-                       return trigrav::SolveTrifocal4pt(x1, x2, x3, options, solutions);
-                     });
-}
-BENCHMARK(BM_Trifocal4ptPaper);
-
-// The default 3-point solver (decoupled, math note 4.4); all candidates, best first.
-void BM_Trifocal3pt(benchmark::State& state) {
-  RunSolverBenchmark(state, 3,
-                     [](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
-                       return trigrav::SolveTrifocal3pt(x1, x2, x3, solutions);
-                     });
-}
-BENCHMARK(BM_Trifocal3pt);
-
-// The paper's joint 3-point system (cores C_12 = C_13 = 0, a sextic; math note 4.3).
-void BM_Trifocal3ptSextic(benchmark::State& state) {
-  RunSolverBenchmark(state, 3,
-                     [](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
-                       return trigrav::SolveTrifocal3ptSextic(x1, x2, x3, solutions);
-                     });
-}
-BENCHMARK(BM_Trifocal3ptSextic);
-
 // Two-view counterpart of RunSolverBenchmark: raw rays of views 1 and 2 (no gravity alignment);
 // "found" = fraction of the scenes with the truth (1e-6 deg) among the solutions (they are not ranked).
 template <typename Solver>
@@ -160,30 +119,89 @@ void RunTwoViewSolverBenchmark(benchmark::State& state, int num_points, Solver s
   state.counters["found"] = static_cast<double>(found) / scenes.size();
 }
 
-void BM_Essential5pt(benchmark::State& state) {
-  RunTwoViewSolverBenchmark(state, 5, [](const auto& x1, const auto& x2, auto* solutions) {
+// Gravity-aware and trifocal solvers on aligned rays.
+template <typename Solver>
+void RegisterSolver(const std::string& name, int num_points, Solver solve) {
+  benchmark::RegisterBenchmark(("BM_Solver/" + name).c_str(),
+                               [num_points, solve](benchmark::State& state) {
+                                 RunSolverBenchmark(state, num_points, solve);
+                               });
+}
+
+// Two-view solvers on pair (1,2).
+template <typename Solver>
+void RegisterTwoViewSolver(const std::string& name, int num_points, Solver solve) {
+  benchmark::RegisterBenchmark(("BM_Solver/" + name).c_str(),
+                               [num_points, solve](benchmark::State& state) {
+                                 RunTwoViewSolverBenchmark(state, num_points, solve);
+                               });
+}
+
+void RegisterSolverBenchmarks() {
+  using trigrav::InitialSolver;
+  const auto trifocal_3pt = [](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
+    return trigrav::SolveTrifocal3pt(x1, x2, x3, solutions);
+  };
+  const auto trifocal_3pt_sextic = [](const auto& x1, const auto& x2, const auto& x3,
+                                      auto* solutions) {
+    return trigrav::SolveTrifocal3ptSextic(x1, x2, x3, solutions);
+  };
+  const auto trifocal_4pt = [](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
+    return trigrav::SolveTrifocal4pt(x1, x2, x3, solutions);
+  };
+  const auto trifocal_linear = [](const auto& x1, const auto& x2, const auto& x3,
+                                  auto* solutions) {
+    return trigrav::SolveTrifocalLinear(x1, x2, x3, solutions);
+  };
+  const auto essential_5pt = [](const auto& x1, const auto& x2, auto* solutions) {
     return trigrav::SolveEssential5pt(x1, x2, solutions);
-  });
+  };
+  const auto essential_8pt = [](const auto& x1, const auto& x2, auto* solutions) {
+    return trigrav::SolveEssential8pt(x1, x2, solutions);
+  };
+  for (const InitialSolver solver : trigrav::kInitialSolvers) {
+    const std::string name = trigrav::InitialSolverName(solver);
+    const int n = trigrav::MinimalSampleSize(solver);
+    switch (solver) {
+      case InitialSolver::kTrifocal3pt:
+        RegisterSolver(name, n, trifocal_3pt);
+        break;
+      case InitialSolver::kTrifocal3ptSextic:
+        RegisterSolver(name, n, trifocal_3pt_sextic);
+        break;
+      case InitialSolver::kTrifocal4pt:
+        RegisterSolver(name, n, trifocal_4pt);
+        break;
+      case InitialSolver::kTrifocalLinear:
+        RegisterSolver(name, n, trifocal_linear);
+        RegisterSolver(name + "/20", 20, trifocal_linear);
+        break;
+      case InitialSolver::kEssential5pt:
+        RegisterTwoViewSolver(name, n, essential_5pt);
+        break;
+      case InitialSolver::kEssential8pt:
+        RegisterTwoViewSolver(name, n, essential_8pt);
+        RegisterTwoViewSolver(name + "/20", 20, essential_8pt);
+        break;
+    }
+  }
+  // 4-point variants: the math note's pipeline (trigrav's default without the polish step) and the
+  // paper's closed forms (no enforcement, eqs c8-c11, no translation re-solve).
+  trigrav::Trifocal4ptOptions note;
+  note.polish_iterations = 0;
+  RegisterSolver("4pt-note", 4,
+                 [note](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
+                   return trigrav::SolveTrifocal4pt(x1, x2, x3, note, solutions);
+                 });
+  trigrav::Trifocal4ptOptions closed_form;
+  closed_form.recovery = trigrav::Trifocal4ptRecovery::kPaperClosedForm;
+  closed_form.resolve_translations = false;
+  closed_form.polish_iterations = 0;
+  RegisterSolver("4pt-closed-form", 4,
+                 [closed_form](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
+                   return trigrav::SolveTrifocal4pt(x1, x2, x3, closed_form, solutions);
+                 });
 }
-BENCHMARK(BM_Essential5pt);
-
-// Normalised 8-point with 8 and with 20 correspondences.
-void BM_Essential8pt(benchmark::State& state) {
-  RunTwoViewSolverBenchmark(state, static_cast<int>(state.range(0)),
-                            [](const auto& x1, const auto& x2, auto* solutions) {
-                              return trigrav::SolveEssential8pt(x1, x2, solutions);
-                            });
-}
-BENCHMARK(BM_Essential8pt)->Arg(8)->Arg(20);
-
-// Normalised linear trifocal tensor (general rotations) with 7 and with 20 triplets.
-void BM_TrifocalLinear(benchmark::State& state) {
-  RunSolverBenchmark(state, static_cast<int>(state.range(0)),
-                     [](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
-                       return trigrav::SolveTrifocalLinear(x1, x2, x3, solutions);
-                     });
-}
-BENCHMARK(BM_TrifocalLinear)->Arg(7)->Arg(20);
 
 #ifdef TRIGRAV_WITH_PEERS
 // One benchmark per peer minimal solver, on 100 scenes of 5 triplets (seed 2026, like the others).
@@ -213,6 +231,7 @@ void RegisterPeerBenchmarks() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  RegisterSolverBenchmarks();
 #ifdef TRIGRAV_WITH_PEERS
   RegisterPeerBenchmarks();
 #endif

@@ -1,5 +1,4 @@
-// Bad-input matrix (issue 9): every public entry point of trigrav against every bad input the issue
-// lists, each (case, entry point) pair checked against the outcome written down in Cases():
+// Bad-input matrix: every public entry point of trigrav against every bad input below, each (case, entry point) pair checked against the outcome written down in Cases():
 //   - std::invalid_argument whose message names the problem (misuse at the public boundary);
 //   - no solution: 0 poses, success == false with a message, Build() == false, no triangulation;
 //   - the true pose (point, alignment) among the results;

@@ -76,7 +76,7 @@ Expectation ExpectationFor(InitialSolver solver) {
   return {0.95, 0.5, 3.0, 0.05};
 }
 
-// 200 triplets, 1 px noise, 50 % outliers, a 3 px threshold (math note section 7: p99 of the inlier
+// 200 triplets, 1 px noise, 50 % outliers, a 3 px threshold (derivations.md section 7: p99 of the inlier
 // error is 2.7 px at 1 px noise).
 TEST_P(RobustEveryMethod, FindsInliersAndPoseAtHalfOutliers) {
   RobustThreeViewOptions options;

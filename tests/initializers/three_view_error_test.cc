@@ -39,7 +39,7 @@ TEST(ThreeViewReprojectionError, ZeroForExactTripletsAndNoiseSized) {
   std::vector<double> errors;
   for (std::size_t n = 0; n < noisy_error.size(); ++n) errors.push_back(noisy_error(noisy_pose, n));
   std::sort(errors.begin(), errors.end());
-  // Math note section 7: median 1.18 px, p95 2.2 px with ground-truth poses at 1 px.
+  // derivations.md section 7: median 1.18 px, p95 2.2 px with ground-truth poses at 1 px.
   EXPECT_NEAR(errors[errors.size() / 2], 1.18, 0.15);
   EXPECT_NEAR(errors[errors.size() * 95 / 100], 2.2, 0.3);
 }
@@ -62,7 +62,7 @@ TEST(ThreeViewReprojectionError, InfiniteBehindACamera) {
 
 // Straight driving: collinear centres make the three epipolar constraints coincide. A view-3 outlier
 // that slides 20 px along its epipolar line keeps every pairwise epipolar error at zero, but its
-// triangulation disagrees with views 1 and 2 (math note section 7).
+// triangulation disagrees with views 1 and 2 (derivations.md section 7).
 TEST(ThreeViewReprojectionError, SeesAnOutlierSlidingAlongItsEpipolarLine) {
   const double f = 500.0;
   ThreeViewPose pose;  // cameras at z = 0, 1, 2 m, same orientation: forward motion

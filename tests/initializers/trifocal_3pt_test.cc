@@ -136,7 +136,7 @@ TEST(Trifocal3ptSextic, NoiseFreeContainsTruthInMostScenes) {
     found += ClosestCandidate(scene.ground_truth, solutions, &e) >= 0 && e.MaxAngleDeg() < 1e-4 &&
              e.relative_scale < 1e-4;
   }
-  // Math note 4.5: the paper's system has near-double roots; about 1 % of scenes lose the truth.
+  // derivations.md section 9: the paper's system has near-double roots; about 1 % of scenes lose the truth.
   EXPECT_GE(found, 0.95 * kScenes);
 }
 
@@ -331,9 +331,9 @@ TEST(Trifocal3pt, DegenerateInputGivesFinitePosesOnly) {
   }
 }
 
-// With 1 px noise the best-ranked candidate is about as accurate as math note section 6 measured
+// With 1 px noise the best-ranked candidate is about as accurate as derivations.md section 8.5 measured
 // (median rotation error 1.23 deg decoupled, 3.42 deg sextic); scenes without a candidate count as
-// a 180 deg error. The decoupled solver is the more accurate one (note 4.5).
+// a 180 deg error. The decoupled solver is the more accurate one (derivations.md section 9).
 TEST(Trifocal3pt, NoisyMedianErrorsMatchTheNote) {
   std::array<double, 2> medians{};
   for (int s = 0; s < 2; ++s) {

@@ -78,7 +78,7 @@ TEST(Trifocal4pt, PaperVariantsExactNoiseFree) {
       Trifocal4ptOptions options;
       options.recovery = recovery;
       options.resolve_translations = resolve;
-      options.polish_iterations = 0;  // each variant alone, as the paper and the note define it
+      options.polish_iterations = 0;  // each variant alone, as the paper and derivations.md section 4 define it
       for (int trial = 0; trial < 200; ++trial) {
         const SyntheticScene scene = GenerateSyntheticScene(SyntheticSceneOptions(), &rng);
         std::vector<ThreeViewPose> solutions;
@@ -102,7 +102,7 @@ double MedianRotationErrorDeg(const Trifocal4ptOptions& options, int num_points,
 
 // With noise the error grows smoothly with the noise level and stays in the range measured for this
 // scene (f = 500 px; 1 px: 0.94 deg for the default pipeline, 3.2 deg without the polish step as in
-// math note section 6).
+// derivations.md section 8.5).
 TEST(Trifocal4pt, DegradesSmoothlyWithNoise) {
   std::vector<double> medians;
   for (const double noise_px : {0.1, 0.5, 1.0, 2.0}) {
@@ -114,7 +114,7 @@ TEST(Trifocal4pt, DegradesSmoothlyWithNoise) {
   for (std::size_t i = 1; i < medians.size(); ++i) EXPECT_GT(medians[i], 1.5 * medians[i - 1]);
 }
 
-// Each stage earns its place (math note table 3.5 and the polish step): least-squares recovery, then
+// Each stage earns its place (derivations.md sections 4.3-4.5 and the polish step): least-squares recovery, then
 // enforcement, then the polish, then more triplets.
 TEST(Trifocal4pt, EachStageReducesTheError) {
   Trifocal4ptOptions least_squares;

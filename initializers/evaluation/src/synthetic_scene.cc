@@ -20,7 +20,7 @@ void CheckField(bool ok, const char* what) {
   if (!ok) throw std::invalid_argument(std::string("trigrav: SyntheticSceneOptions: ") + what);
 }
 
-// World-to-camera rotation R_x(pitch) R_z(roll) R_y(yaw), math note section 6.
+// World-to-camera rotation R_x(pitch) R_z(roll) R_y(yaw), derivations.md section 8.5.
 Eigen::Matrix3d CamFromWorld(double pitch, double roll, double yaw) {
   return (Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX()) *
           Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitZ()) *

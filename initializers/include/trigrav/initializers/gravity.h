@@ -26,7 +26,7 @@ Eigen::Matrix3d RotationAboutY(double theta_rad);
 Eigen::Matrix3d GravityAlignmentFromGravity(const Eigen::Vector3d& gravity_in_cam);
 
 // Alignment of a camera whose world-to-camera rotation is R_x(pitch) R_z(roll) R_y(yaw) with the
-// world y axis along gravity (math note section 1): R_align = (R_x(pitch) R_z(roll))^T.
+// world y axis along gravity (derivations.md section 1.3): R_align = (R_x(pitch) R_z(roll))^T.
 // Angles in radians; throws std::invalid_argument if not finite.
 Eigen::Matrix3d GravityAlignmentFromPitchRoll(double pitch_rad, double roll_rad);
 
@@ -38,7 +38,7 @@ std::vector<Eigen::Vector3d> AlignRays(const Eigen::Matrix3d& gravity_alignment,
                                        const std::vector<Eigen::Vector3d>& rays_in_cam);
 
 // Maps a pose solved between aligned frames back to the original camera frames, the corrected
-// eq. b4 of the paper (math note section 1; the paper's t~ = R_imu,k^T t_k is the transform of the
+// eq. b4 of the paper (derivations.md section 2.2; the paper's t~ = R_imu,k^T t_k is the transform of the
 // fourth column, not of the centre it names):
 //   R~ = R_align_cam^T * R * R_align_ref,   t~ = R_align_cam^T * t   (t = fourth column),
 // which puts the centre at R_align_ref^T * centre_aligned.

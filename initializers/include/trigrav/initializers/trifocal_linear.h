@@ -20,7 +20,7 @@ namespace trigrav {
 // and a triplet x1 <-> x2 <-> x3 satisfies the point-point-point incidence
 //   [x2]_x (sum_i x1_i T_i) [x3]_x = 0_{3x3},
 // 4 independent equations linear in the 27 entries of T: p_a^T (sum_i x1_i T_i) r_b = 0, a, b in
-// {1, 2}, with orthonormal bases (p_a) of x2^perp and (r_b) of x3^perp (math note section 2).
+// {1, 2}, with orthonormal bases (p_a) of x2^perp and (r_b) of x3^perp (derivations.md section 3).
 //   1. Hartley normalisation per view: dehomogenise (x_1 / x_3, x_2 / x_3), move the centroid to
 //      the origin and scale the mean distance to sqrt(2): x^ = H_k x / x_3. The incidence is
 //      homogeneous in each ray, so dividing by a negative x_3 (a ray pointing backwards) does not
@@ -37,7 +37,7 @@ namespace trigrav {
 //   4. Each E_k1 = U diag(s1, s2, 0) V^T gives two rotations U W V^T and U W^T V^T (the twisted
 //      pair).
 //   5. For each of the 2 x 2 rotation pairs the centres (c_2; c_3) are re-solved linearly from all
-//      triplets with the rotations fixed (the incidence rows of math note 4.1, valid for any R_2,
+//      triplets with the rotations fixed (the incidence rows of derivations.md section 3.4, valid for any R_2,
 //      R_3: least-squares null vector of 4N x 6). This gives both directions and the relative scale
 //      from the incidence itself rather than from the entries of the unconstrained tensor.
 //   6. Cheirality: for each pair, the sign of (c_2; c_3) that puts the most triplets in front of

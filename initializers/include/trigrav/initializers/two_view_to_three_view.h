@@ -10,7 +10,7 @@
 namespace trigrav {
 
 // Three-view poses from the solutions of a two-view method (5-point or 8-point) on the view pairs
-// (1,2) and (1,3) (math note sections 4.4 step 2 and 7): every combination of a (1,2) solution and a
+// (1,2) and (1,3) (derivations.md sections 5.6 and 6.3): every combination of a (1,2) solution and a
 // (1,3) solution, with the centre of camera 3 rescaled by kappa = <l2, l3> / <l3, l3>, l_k the view-1
 // depths of the triplets triangulated from pair (1,k) alone. Combinations with kappa <= 0 (or not
 // finite) are inconsistent and skipped. Camera 2 keeps its scale (|Center()| = 1 for trigrav's

@@ -2,7 +2,7 @@
 #define TRIGRAV_EVALUATION_POOLED_ERRORS_H_
 
 // Errors of many three-view estimates against their ground truth with views 2 and 3 pooled (the
-// paper's and the math note's convention): per estimate two rotation and two translation-direction
+// paper's convention, derivations.md section 8.4): per estimate two rotation and two translation-direction
 // errors in degrees and one relative-scale error |log(s_est / s_gt)| (pose_errors.h).
 
 #include <limits>

@@ -14,7 +14,7 @@
 namespace trigrav {
 
 // Synthetic three-view scenes following the protocol of the paper's Section IV as made explicit in
-// math note section 6. Defaults are the note's values (f = 500 px, 640 x 480, +-10 deg, +-10 m).
+// derivations.md section 8.5. Defaults are the note's values (f = 500 px, 640 x 480, +-10 deg, +-10 m).
 // The world y axis is gravity (down); camera k has world-to-camera rotation
 // W_k = R_x(pitch_k) R_z(roll_k) R_y(yaw_k) and centre C_k (C_1 = 0).
 struct SyntheticSceneOptions {

@@ -10,6 +10,7 @@ packages=(
   libopencv-dev          # KITTI tool only (SIFT features); the library never links it
   libopengv-dev          # optional peer rows in the comparisons; the library never links it
   clang libclang-rt-14-dev  # libFuzzer and the sanitizer runtime for the hardening step
+  clang-format           # the formatting check of the test suite (clang-format-14)
 )
 missing=()
 for package in "${packages[@]}"; do

@@ -52,10 +52,10 @@ constexpr double kMinRelativeLeading = 1e-2;
 constexpr int kQuarticNewtonSteps = 6;
 // Decoupled solver: a complex pair of quartic roots with |Im t| below this also gives a candidate,
 // at its real part (about where the epipolar constraints of the pair come closest to consistent).
-// Noise turns near-double real roots, often the true one among them, into such pairs. On the note's
-// scenes at 1 px this cuts the scenes without any candidate from 5.3 % to 0.9 % and the median
+// Noise turns near-double real roots, often the true one among them, into such pairs. On the
+// synthetic scenes of derivations.md section 8.5 at 1 px this cuts the scenes without any candidate from 5.3 % to 0.9 % and the median
 // rotation error of the best-ranked candidate from 1.15 to 0.95 deg, for 0.2 more candidates per
-// call noise-free (0.6 at 1 px). Exact roots are unaffected. Not in the note.
+// call noise-free (0.6 at 1 px). Exact roots are unaffected. trigrav's own addition.
 constexpr double kMaxImaginaryPart = 0.1;
 
 // Sorts the first `count` entries of a small array by key, ascending (insertion sort, no heap).
@@ -87,7 +87,7 @@ struct Yaw {
 };
 
 // R_y(theta) x = cos(theta) A + sin(theta) B + C with A = (x, 0, z), B = (z, 0, -x), C = (0, y, 0)
-// (math note section 1).
+// (derivations.md section 1.4).
 struct TrigLinear {
   Eigen::Vector3d A, B, C;
   explicit TrigLinear(const Eigen::Vector3d& x)
@@ -114,7 +114,7 @@ const Offset& ChooseOffset(double scale, Leading&& leading) {
 }
 
 // ------------------------------------------------------------------------------------------------
-// Decoupled solver (math note 4.4).
+// Decoupled solver (derivations.md section 5.5).
 
 // One real root of the upright 2-view problem of pair (1,k) that passes cheirality.
 struct PairRoot {
@@ -125,7 +125,7 @@ struct PairRoot {
 
 // det[m_1; m_2; m_3] at 5 equally spaced yaws, m_n(theta) = (R_y(theta) x1_n) x xk_n = cos P_n +
 // sin Q_n + S_n, is a trigonometric polynomial of degree 2 (the degree-6 polynomial in tan(theta/2)
-// has the factor 1 + tan^2, note 4.4), D = a0 + a1 cos + b1 sin + a2 cos 2theta + b2 sin 2theta; a
+// has the factor 1 + tan^2, derivations.md section 5.5), D = a0 + a1 cos + b1 sin + a2 cos 2theta + b2 sin 2theta; a
 // 5-point DFT gives its coefficients exactly.
 struct TrigQuadratic {
   double a0 = 0.0, a1 = 0.0, b1 = 0.0, a2 = 0.0, b2 = 0.0;
@@ -215,7 +215,7 @@ int SolveUprightPair(const Rays& x1, const Rays& xk, std::array<PairRoot, 4>* ro
     if (!(norm > 0.0) || !std::isfinite(norm)) continue;
     epipole /= norm;
     // View-1 depths lambda_n = ((xk x e) . (xk x R x1)) / |xk x R x1|^2, xk x R x1 = -m_n
-    // (note 3.4).
+    // (derivations.md section 4.6).
     for (std::size_t n = 0; n < kNumTriplets; ++n) {
       const double denominator = m[n].squaredNorm();
       root.depth[n] = denominator > 0.0 ? -xk[n].cross(epipole).dot(m[n]) / denominator : 0.0;
@@ -281,7 +281,7 @@ int SolveDecoupledAligned(const Rays& x1, const Rays& x2, const Rays& x3,
 }
 
 // ------------------------------------------------------------------------------------------------
-// Sextic solver (math note 4.3).
+// Sextic solver (derivations.md section 5.4).
 
 // True if all 3 points triangulated from pair (1,k) with this pose lie in front of cameras 1 and k.
 bool PointsInFront(const Rays& x1, const Rays& xk, const CameraPose& pose) {
@@ -307,7 +307,7 @@ double LargestSingularValue(const Eigen::Matrix<double, 6, 6>& R) {
   return std::sqrt(sigma_squared);
 }
 
-// The two cores C_12 and C_13 as polynomials in t = tan((theta_2 - theta_0)/2) (note 4.2-4.3).
+// The two cores C_12 and C_13 as polynomials in t = tan((theta_2 - theta_0)/2) (derivations.md sections 5.2-5.4).
 class SexticSystem {
  public:
   SexticSystem(const Rays& x1, const Rays& x2, const Rays& x3) {
@@ -352,7 +352,7 @@ class SexticSystem {
     return cross;
   }
 
-  // cx^2 + cy^2 - cz^2 (degree 8) divided by its exact factor 1 + t^2: the sextic of note 4.3.
+  // cx^2 + cy^2 - cz^2 (degree 8) divided by its exact factor 1 + t^2: the sextic of derivations.md section 5.4.
   std::array<double, 7> Sextic(const Offset& offset) const {
     const std::array<Eigen::Vector3d, 5> cross = Cross(offset);
     std::array<double, 9> g{};
@@ -416,7 +416,7 @@ int SolveSexticAligned(const Rays& x1, const Rays& x2, const Rays& x3,
     const double sign = direction.z() > 0.0 ? 1.0 : -1.0;
     const Yaw yaw3 = {sign * direction.x() / horizontal, sign * direction.y() / horizontal};
 
-    // Centres: null vector of the 12x6 translation system with the yaws fixed (note 4.1).
+    // Centres: null vector of the 12x6 translation system with the yaws fixed (derivations.md section 3.4).
     const Eigen::Matrix3d R2 = yaw2.Matrix(), R3 = yaw3.Matrix();
     Eigen::Matrix<double, 12, 6> F;
     for (std::size_t n = 0; n < kNumTriplets; ++n) {

@@ -25,7 +25,7 @@ using TensorSlices = std::array<Eigen::Matrix3d, 3>;
 
 constexpr int kMinTriplets = 4;
 
-// Where Q_1..Q_17 sit in the aligned trifocal tensor (paper eqs c2-c4, checked in math note section 2):
+// Where Q_1..Q_17 sit in the aligned trifocal tensor (paper eqs c2-c4, checked in derivations.md section 3):
 // entry T_slice(row, col) = sign * Q_q, all indices 0-based. Six entries of T are always zero.
 struct TensorEntry {
   int q, slice, row, col;
@@ -39,7 +39,7 @@ constexpr std::array<TensorEntry, 21> kTensorEntries = {{
     {16, 2, 2, 2, 1},
 }};
 
-// The 4 incidence rows of one triplet in q (math note section 2): p_a^T (sum_i x1_i T_i) r_b = 0 for
+// The 4 incidence rows of one triplet in q (derivations.md section 3): p_a^T (sum_i x1_i T_i) r_b = 0 for
 // orthonormal bases (p_a) of x2^perp and (r_b) of x3^perp, equivalent to eq. c6.
 Eigen::Matrix<double, 4, 17> IncidenceRows(const Eigen::Vector3d& x1, const Eigen::Vector3d& x2,
                                            const Eigen::Vector3d& x3) {
@@ -68,7 +68,7 @@ TensorSlices TensorFromQ(const Vector17d& q) {
   return T;
 }
 
-// q = E a for the constrained tensor with epipoles e' = e, e'' = f (eqs f2-f6, math note 3.3 step 2):
+// q = E a for the constrained tensor with epipoles e' = e, e'' = f (eqs f2-f6, derivations.md section 4.3):
 // the 26 non-zeros of the 17 x 6 matrix E, as (row of q, column of a, value).
 struct BasisEntry {
   int q, a;
@@ -102,7 +102,7 @@ struct AlignedEstimate {
   Eigen::Vector3d center2 = Eigen::Vector3d::Zero(), center3 = Eigen::Vector3d::Zero();
 };
 
-// Centres from q given the yaws: R2 c2 = (Q9, ty2, Q13), R3 c3 = (-Q10, ty3, -Q12) (math note 2).
+// Centres from q given the yaws: R2 c2 = (Q9, ty2, Q13), R3 c3 = (-Q10, ty3, -Q12) (derivations.md section 3).
 void CentersFromQ(const Vector17d& q, double ty2, double ty3, AlignedEstimate* estimate) {
   estimate->center2 =
       RotationAboutY(estimate->theta2).transpose() * Eigen::Vector3d(q[8], ty2, q[12]);
@@ -110,7 +110,7 @@ void CentersFromQ(const Vector17d& q, double ty2, double ty3, AlignedEstimate* e
       RotationAboutY(estimate->theta3).transpose() * Eigen::Vector3d(-q[9], ty3, -q[11]);
 }
 
-// Constraint enforcement for given epipoles (eqs f2-f7) and the pose read from a (math note 3.3 step
+// Constraint enforcement for given epipoles (eqs f2-f7) and the pose read from a (derivations.md section 4.3 step
 // 4). M is the incidence matrix A itself (minimal case) or its triangular factor R_A (|A y| = |R_A y|).
 // False if the basis E is degenerate.
 template <typename IncidenceMatrix>
@@ -150,7 +150,7 @@ bool EnforceConstraints(const IncidenceMatrix& M, const Eigen::Vector3d& epipole
   return true;
 }
 
-// Yaws from all 8 relations of eq. c5 by least squares, then ty2, ty3 (math note 3.2).
+// Yaws from all 8 relations of eq. c5 by least squares, then ty2, ty3 (derivations.md section 4.2).
 bool EstimateLeastSquares(const Vector17d& q, AlignedEstimate* estimate) {
   Eigen::Matrix<double, 8, 4> M;
   Eigen::Matrix<double, 8, 1> rhs;
@@ -195,7 +195,7 @@ bool EstimatePaperClosedForm(const Vector17d& q, AlignedEstimate* estimate) {
   return std::isfinite(estimate->theta2) && std::isfinite(estimate->theta3);
 }
 
-// (c2; c3) = null vector of the stacked translation rows with the yaws fixed (math note 4.1).
+// (c2; c3) = null vector of the stacked translation rows with the yaws fixed (derivations.md section 3.4).
 void ResolveCenters(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
                     const std::vector<Eigen::Vector3d>& x3, AlignedEstimate* estimate) {
   const Eigen::Matrix3d R2 = RotationAboutY(estimate->theta2);

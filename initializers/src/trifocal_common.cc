@@ -86,7 +86,7 @@ void RefineYawsAndCenters(const std::vector<Eigen::Vector3d>& x1,
     PerpendicularBasis(x2[n], &p[0], &p[1]);
     PerpendicularBasis(x3[n], &r[0], &r[1]);
     // Row (a, b): (z . r_b) (p_a x x2) . R2 c2 + (p_a . u) (r_b x x3) . R3 c3, u = x2 x R2 x1,
-    // z = R3 x1 x x3 (math note 4.1); u and z carry the cross-dependence on the other yaw.
+    // z = R3 x1 x x3 (derivations.md section 3.4); u and z carry the cross-dependence on the other yaw.
     const Eigen::Vector3d u = x2[n].cross(R2 * x1[n]), du = x2[n].cross(dR2 * x1[n]);
     const Eigen::Vector3d z = (R3 * x1[n]).cross(x3[n]), dz = (dR3 * x1[n]).cross(x3[n]);
     // Everything that depends on a alone or on b alone, then the 4 rows from products of the two.

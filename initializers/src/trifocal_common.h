@@ -24,7 +24,7 @@ inline void PerpendicularBasis(const Eigen::Vector3d& x, Eigen::Vector3d* p1, Ei
 }
 
 // The 4 trifocal incidence equations of one aligned triplet as linear functions of the centres
-// (c_2; c_3) for fixed yaws (math note 4.1): with u = x2 x R2 x1, z = R3 x1 x x3 and (p_a), (r_b)
+// (c_2; c_3) for fixed yaws (derivations.md section 3.4): with u = x2 x R2 x1, z = R3 x1 x x3 and (p_a), (r_b)
 // bases of x2^perp and x3^perp, row (a, b) = [ (z . r_b) (p_a x x2)^T R2 , (p_a . u) (r_b x x3)^T
 // R3 ].
 Eigen::Matrix<double, 4, 6> TranslationRows(const Eigen::Vector3d& x1,

@@ -132,7 +132,7 @@ bool EssentialMatricesFromTensor(const TensorSlices& T,
 
 // +1 if the point of a triplet is in front of cameras 1 and k for x_k ~ R (X - center), -1 if it is
 // behind both (in front for the negated centre), 0 otherwise. Depths: the view-1 depth from the
-// pair (math note 3.4) and the depth of that point in camera k.
+// pair (derivations.md section 4.6) and the depth of that point in camera k.
 int Cheirality(const Eigen::Vector3d& x1,
                const Eigen::Vector3d& xk,
                const Eigen::Matrix3d& R,
@@ -166,7 +166,7 @@ struct Candidate {
   double residual = std::numeric_limits<double>::infinity();
 };
 
-// Centres for fixed rotations: least-squares null vector of the incidence rows of math note 4.1
+// Centres for fixed rotations: least-squares null vector of the incidence rows of derivations.md section 3.4
 // (header step 5), with the sign that puts the most triplets in front of all three cameras
 // (step 6).
 template <int Rows>

@@ -15,7 +15,7 @@ namespace trigrav {
 namespace internal {
 
 // View-1 depth of the point seen along x1 and xk, from the pair (1, k) alone, with
-// xk ~ R (X - center): lambda = ((xk x R center) . (xk x R x1)) / |xk x R x1|^2 (math note 3.4).
+// xk ~ R (X - center): lambda = ((xk x R center) . (xk x R x1)) / |xk x R x1|^2 (derivations.md section 4.6).
 // NaN-free: returns 0 when the rays are parallel after rotation.
 inline double ViewOneDepth(const Eigen::Vector3d& x1,
                            const Eigen::Vector3d& xk,

@@ -20,8 +20,10 @@ namespace trigrav {
 // Yaw rotation about the y axis, as above.
 Eigen::Matrix3d RotationAboutY(double theta_rad);
 
-// The smallest rotation taking gravity_in_cam (down, any positive length) onto +y. Any rotation with
-// that property is a valid alignment: two choices differ by a left R_y factor that the yaw absorbs.
+// A rotation taking gravity_in_cam (down, any positive length) onto +y, with rows (r, g, r x g) for
+// a camera axis r made orthogonal to g (derivations.md section 1.3; the identity for g = +y). Any
+// rotation with that property is a valid alignment: two choices differ by a left R_y factor that the
+// yaw absorbs, so this one need not be the smallest such rotation.
 // Throws std::invalid_argument for a zero-length or non-finite vector.
 Eigen::Matrix3d GravityAlignmentFromGravity(const Eigen::Vector3d& gravity_in_cam);
 

@@ -1,11 +1,12 @@
 #ifndef TRIGRAV_EVALUATION_PAPER_PROTOCOL_H_
 #define TRIGRAV_EVALUATION_PAPER_PROTOCOL_H_
 
-// The levels of the paper's synthetic experiments (Section IV; protocol of derivations.md section 8.5),
-// the seeds of their scenes and their accuracy CSV, shared by the tools that run them:
-// paper_experiments (stability, noise, pitch, roll) and initialize_and_refine_synthetic
-// --experiment=sample20. A level's trials run in chunks whose seeds derive from the level's index in
-// PaperLevels(), so that a tool running some of the levels draws the same scenes as a run of all.
+// The levels of the paper's synthetic experiments (Section IV; protocol of derivations.md
+// section 8.5), the seeds of their scenes and their accuracy CSV, shared by the tools that run
+// them: paper_experiments (stability, noise, pitch, roll) and initialize_and_refine_synthetic
+// --experiment=sample20. A level's trials run in chunks whose seeds derive from the level's index
+// in PaperLevels(), so that a tool running some of the levels draws the same scenes as a run of
+// all.
 
 #include <cstddef>
 #include <cstdint>

@@ -27,8 +27,8 @@ inline SyntheticSceneOptions RobustBenchmarkSceneOptions() {
 }
 
 // `count` scenes drawn one after the other from one generator seeded with `seed`.
-inline std::vector<SyntheticScene> RobustBenchmarkScenes(int count = kRobustBenchmarkScenes,
-                                                         std::uint64_t seed = kRobustBenchmarkSeed) {
+inline std::vector<SyntheticScene> RobustBenchmarkScenes(
+    int count = kRobustBenchmarkScenes, std::uint64_t seed = kRobustBenchmarkSeed) {
   const SyntheticSceneOptions options = RobustBenchmarkSceneOptions();
   std::mt19937_64 rng(seed);
   std::vector<SyntheticScene> scenes;

@@ -1,20 +1,32 @@
-# Checks the CSVs of `paper_experiments --quick`: every file and column present, every error
+# Checks the CSVs of the paper protocol's quick mode: every file and column present, every error
 # finite, the noise-free errors tiny. Usage:
-#   cmake [-DEXE=<paper_experiments>] -DDIR=<output dir> -P check_paper_experiments.cmake
-# With EXE, the folder is emptied and `EXE --quick --output_dir=DIR` is run first.
-if(NOT DEFINED DIR)
-  message(FATAL_ERROR "usage: cmake [-DEXE=<paper_experiments>] -DDIR=<output dir> -P check_paper_experiments.cmake")
+#   cmake [-DEXE=<tool>] -DEXPERIMENT=paper|sample20 -DDIR=<output dir> -P check_paper_experiments.cmake
+# paper: the CSVs of paper_experiments (stability_summary, stability_histogram, stability, noise,
+# pitch, roll, timing); sample20: sample20.csv of initialize_and_refine_synthetic
+# --experiment=sample20. With EXE, the folder is emptied and the tool is run first in its quick mode
+# (`paper_experiments --quick --output_dir=DIR`, `initialize_and_refine_synthetic
+# --experiment=sample20 --quick --output=DIR/sample20.csv`).
+if(NOT DEFINED DIR OR NOT EXPERIMENT MATCHES "^(paper|sample20)$")
+  message(FATAL_ERROR "usage: cmake [-DEXE=<tool>] -DEXPERIMENT=paper|sample20 -DDIR=<output dir> -P check_paper_experiments.cmake")
 endif()
 if(DEFINED EXE)
   file(REMOVE_RECURSE "${DIR}")
-  execute_process(COMMAND "${EXE}" --quick --threads=2 "--output_dir=${DIR}" RESULT_VARIABLE rc)
+  if(EXPERIMENT STREQUAL "paper")
+    set(command "${EXE}" --quick --threads=2 "--output_dir=${DIR}")
+  else()
+    file(MAKE_DIRECTORY "${DIR}")
+    set(command "${EXE}" --experiment=sample20 --quick --threads=2 "--output=${DIR}/sample20.csv")
+  endif()
+  execute_process(COMMAND ${command} RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${EXE} --quick failed: ${rc}")
+    message(FATAL_ERROR "${command} failed: ${rc}")
   endif()
 endif()
 
-set(methods 8pt 5pt 7pt-linear 3pt-sextic 4pt-paper 3pt 4pt)
+set(methods 3pt 3pt-sextic 4pt 7pt-linear 5pt 8pt 4pt-paper)
 set(accuracy_columns experiment method sample_size noise_px pitch_deg roll_deg trials failures
+    rotation_deg translation_deg scale rotation_p90_deg translation_p90_deg)
+set(sample20_columns experiment method stage sample_size noise_px pitch_deg roll_deg trials failures
     rotation_deg translation_deg scale rotation_p90_deg translation_p90_deg)
 set(columns_stability_summary method trials failures rotation_median_deg rotation_p99_deg
     rotation_mean_deg rotation_max_deg rotation_mean_log10 translation_median_deg
@@ -24,9 +36,10 @@ set(columns_stability_histogram method quantity log10_lo log10_hi count density)
 set(columns_timing method sample_size solver_ns_per_call solver_calls ransac_ms_median
     ransac_iterations_median ransac_scenes ransac_failures ransac_rotation_deg
     ransac_translation_deg)
-foreach(name stability noise pitch roll sample20)
+foreach(name stability noise pitch roll)
   set(columns_${name} ${accuracy_columns})
 endforeach()
+set(columns_sample20 ${sample20_columns})
 
 set(errors 0)
 macro(fail text)
@@ -79,7 +92,7 @@ function(check_finite name)
     foreach(cell IN LISTS cells)
       list(GET columns_${name} ${i} column)
       math(EXPR i "${i} + 1")
-      if(column STREQUAL "method" OR column STREQUAL "experiment" OR column STREQUAL "quantity")
+      if(column MATCHES "^(method|experiment|quantity|stage)$")
         continue()
       endif()
       # The 4pt-paper variant has no robust estimator: its RANSAC timing cells are nan by design.
@@ -95,25 +108,50 @@ function(check_finite name)
   set(errors ${errors} PARENT_SCOPE)
 endfunction()
 
-foreach(name stability_summary stability_histogram stability noise pitch roll sample20 timing)
+if(EXPERIMENT STREQUAL "paper")
+  set(csvs stability_summary stability_histogram stability noise pitch roll timing)
+  set(zero_noise_csvs noise)
+else()
+  set(csvs sample20)
+  set(zero_noise_csvs sample20)
+endif()
+foreach(name IN LISTS csvs)
   read_csv(${name})
   check_finite(${name})
 endforeach()
 
-# Every method appears in the stability summary, the noise sweep and the timing table.
-foreach(name stability_summary noise timing)
-  foreach(method IN LISTS methods)
-    set(found FALSE)
-    foreach(row IN LISTS rows_${name})
-      if(row MATCHES "^(noise,)?${method},")
-        set(found TRUE)
+# Every method appears in the stability summary, the noise sweep and the timing table; every solver
+# of kInitialSolvers raw and refined in sample20.
+if(EXPERIMENT STREQUAL "paper")
+  foreach(name stability_summary noise timing)
+    foreach(method IN LISTS methods)
+      set(found FALSE)
+      foreach(row IN LISTS rows_${name})
+        if(row MATCHES "^(noise,)?${method},")
+          set(found TRUE)
+        endif()
+      endforeach()
+      if(NOT found)
+        fail("${name}.csv: no row for method ${method}")
       endif()
     endforeach()
-    if(NOT found)
-      fail("${name}.csv: no row for method ${method}")
-    endif()
   endforeach()
-endforeach()
+else()
+  list(REMOVE_ITEM methods 4pt-paper)
+  foreach(method IN LISTS methods)
+    foreach(stage raw refined)
+      set(found FALSE)
+      foreach(row IN LISTS rows_sample20)
+        if(row MATCHES "^sample20,${method},${stage},")
+          set(found TRUE)
+        endif()
+      endforeach()
+      if(NOT found)
+        fail("sample20.csv: no row for ${method} ${stage}")
+      endif()
+    endforeach()
+  endforeach()
+endif()
 
 # Noise-free errors are tiny: stability medians, and the zero-noise rows of the noise sweep and of
 # the 20-triplet experiment, below 1e-6 deg (rotation, translation) and 1e-8 (log scale ratio).
@@ -121,7 +159,7 @@ endforeach()
 # USAC ends its final polish at about 1e-5 deg.
 set(tiny_deg 1e-6)
 set(peer_tiny_deg 1e-4)
-foreach(row IN LISTS rows_stability_summary)
+foreach(row IN LISTS rows_stability_summary)  # empty for sample20
   foreach(column rotation_median_deg translation_median_deg)
     field("${row}" stability_summary ${column} value)
     if(NOT value LESS tiny_deg)
@@ -135,7 +173,7 @@ foreach(row IN LISTS rows_stability_summary)
     fail("stability_summary.csv: more than 5 % failures in '${row}'")
   endif()
 endforeach()
-foreach(name noise sample20)
+foreach(name IN LISTS zero_noise_csvs)
   set(zero_rows 0)
   foreach(row IN LISTS rows_${name})
     field("${row}" ${name} noise_px noise)
@@ -174,4 +212,4 @@ endforeach()
 if(errors GREATER 0)
   message(FATAL_ERROR "${errors} check(s) failed in ${DIR}")
 endif()
-message(STATUS "paper_experiments CSVs in ${DIR}: OK")
+message(STATUS "${EXPERIMENT} CSVs in ${DIR}: OK")

@@ -1,7 +1,7 @@
 # trigrav_add_bad_flag_test(<name> <target> <regex> <args>...)
 #
 # Adds the ctest <name>: runs the example program <target> with <args> and passes only if it exits
-# with status 2 (trigrav::examples::kBadFlagExitCode, examples/require_flag.h) and its stderr
+# with status 2 (trigrav::examples::kBadFlagExitCode, examples/common/require_flag.h) and its stderr
 # contains "error: " followed by a match of <regex>. A crash, an abort (glog CHECK), a timeout or
 # acceptance of the flag fails the test. Nothing is added when <target> is not built. One line per
 # bad flag, e.g.

@@ -82,8 +82,8 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
         RefineThreeViewPose(observations, estimate.refined, inliers, options.bundle_adjustment);
     if (!refinement.summary.success || !refinement.pose.IsFinite()) {
       if (run == 0) {
-        estimate.message = "refinement failed, keeping the initial pose: " +
-                           refinement.summary.message;
+        estimate.message =
+            "refinement failed, keeping the initial pose: " + refinement.summary.message;
         estimate.refinement = std::move(refinement);
       }
       break;

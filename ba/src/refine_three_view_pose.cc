@@ -13,9 +13,9 @@ ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observation
   observations.Check();
   options.Check();
   if (inliers.size() != observations.size()) {
-    throw std::invalid_argument(
-        "trigrav: RefineThreeViewPose: the inlier mask has " + std::to_string(inliers.size()) +
-        " entries for " + std::to_string(observations.size()) + " triplets");
+    throw std::invalid_argument("trigrav: RefineThreeViewPose: the inlier mask has " +
+                                std::to_string(inliers.size()) + " entries for " +
+                                std::to_string(observations.size()) + " triplets");
   }
   ThreeViewRefinement refinement;
   refinement.pose = initial;

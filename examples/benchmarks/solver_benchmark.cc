@@ -3,7 +3,8 @@
 //                         and trifocal ones on rays already in gravity-aligned frames (only the
 //                         solver is timed), the two-view ones (5pt, 8pt) on pair (1,2) alone;
 //   BM_Solver/<method>/20 the linear solvers (7pt-linear, 8pt) with 20 triplets;
-//   BM_Solver/4pt-note, BM_Solver/4pt-closed-form  4-point variants (math note 3.3 without the
+//   BM_Solver/4pt-unpolished, BM_Solver/4pt-closed-form  4-point variants (derivations.md
+//   section 4.3 without the
 //                         polish; the paper's closed forms c8-c11), as in minimal_solver_accuracy.
 // Counter "found": the fraction of the scenes whose best-ranked solution is within 1e-6 deg of the
 // truth (two-view solvers, whose solutions are not ranked: with the truth among the solutions).
@@ -13,12 +14,12 @@
 //
 //   solver_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 
+#include <benchmark/benchmark.h>
+
 #include <algorithm>
 #include <random>
 #include <string>
 #include <vector>
-
-#include <benchmark/benchmark.h>
 
 #ifdef TRIGRAV_WITH_PEERS
 #include "peer_estimators.h"
@@ -57,8 +58,8 @@ std::vector<AlignedProblem> MakeProblems(int num_points, int count) {
     problem.x2 = trigrav::AlignRays(align[1], scene.rays[1]);
     problem.x3 = trigrav::AlignRays(align[2], scene.rays[2]);
     // Aligned ground truth: R = A_k R~ A_1^T, t = A_k t~ (the inverse of UnalignPose).
-    problem.ground_truth = trigrav::UnalignThreeViewPose(scene.ground_truth, align[0].transpose(),
-                                                         align[1].transpose(), align[2].transpose());
+    problem.ground_truth = trigrav::UnalignThreeViewPose(
+        scene.ground_truth, align[0].transpose(), align[1].transpose(), align[2].transpose());
     problems.push_back(problem);
   }
   return problems;
@@ -88,7 +89,8 @@ void RunSolverBenchmark(benchmark::State& state, int num_points, Solver solve) {
 }
 
 // Two-view counterpart of RunSolverBenchmark: raw rays of views 1 and 2 (no gravity alignment);
-// "found" = fraction of the scenes with the truth (1e-6 deg) among the solutions (they are not ranked).
+// "found" = fraction of the scenes with the truth (1e-6 deg) among the solutions (they are not
+// ranked).
 template <typename Solver>
 void RunTwoViewSolverBenchmark(benchmark::State& state, int num_points, Solver solve) {
   std::mt19937_64 rng(2026);
@@ -149,8 +151,7 @@ void RegisterSolverBenchmarks() {
   const auto trifocal_4pt = [](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
     return trigrav::SolveTrifocal4pt(x1, x2, x3, solutions);
   };
-  const auto trifocal_linear = [](const auto& x1, const auto& x2, const auto& x3,
-                                  auto* solutions) {
+  const auto trifocal_linear = [](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
     return trigrav::SolveTrifocalLinear(x1, x2, x3, solutions);
   };
   const auto essential_5pt = [](const auto& x1, const auto& x2, auto* solutions) {
@@ -185,11 +186,12 @@ void RegisterSolverBenchmarks() {
         break;
     }
   }
-  // 4-point variants: the math note's pipeline (trigrav's default without the polish step) and the
-  // paper's closed forms (no enforcement, eqs c8-c11, no translation re-solve).
+  // 4-point variants: the pipeline of derivations.md section 4.7 (trigrav's default without the
+  // polish step) and the paper's closed forms (no enforcement, eqs c8-c11, no translation
+  // re-solve).
   trigrav::Trifocal4ptOptions note;
   note.polish_iterations = 0;
-  RegisterSolver("4pt-note", 4,
+  RegisterSolver("4pt-unpolished", 4,
                  [note](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
                    return trigrav::SolveTrifocal4pt(x1, x2, x3, note, solutions);
                  });
@@ -211,19 +213,14 @@ void RegisterPeerBenchmarks() {
   for (const trigrav::peers::NamedMinimalSolver& solver : trigrav::peers::PeerMinimalSolvers()) {
     std::string name = "BM_Peer/" + solver.name;  // "BM_Peer/opengv_fivept_stewenius"
     std::replace(name.begin(), name.end(), ' ', '_');
-    benchmark::RegisterBenchmark(name.c_str(),
-                                 [solver](benchmark::State& state) {
-                                   const trigrav::peers::PreparedMinimalSolver prepared =
-                                       solver.prepare(problems);
-                                   int found = 0;
-                                   for (std::size_t i = 0; i < problems.size(); ++i)
-                                     found += prepared.truth_found(i);
-                                   std::size_t i = 0;
-                                   for (auto _ : state)
-                                     benchmark::DoNotOptimize(prepared.solve(i++ % problems.size()));
-                                   state.counters["truth_found"] =
-                                       static_cast<double>(found) / problems.size();
-                                 });
+    benchmark::RegisterBenchmark(name.c_str(), [solver](benchmark::State& state) {
+      const trigrav::peers::PreparedMinimalSolver prepared = solver.prepare(problems);
+      int found = 0;
+      for (std::size_t i = 0; i < problems.size(); ++i) found += prepared.truth_found(i);
+      std::size_t i = 0;
+      for (auto _ : state) benchmark::DoNotOptimize(prepared.solve(i++ % problems.size()));
+      state.counters["truth_found"] = static_cast<double>(found) / problems.size();
+    });
   }
 }
 #endif

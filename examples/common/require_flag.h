@@ -1,8 +1,8 @@
 #ifndef TRIGRAV_EXAMPLES_COMMON_REQUIRE_FLAG_H_
 #define TRIGRAV_EXAMPLES_COMMON_REQUIRE_FLAG_H_
 
-// Flag validation for the example tools. A bad flag value is misuse, not a bug: the tool prints
-// "<program>: error: <message>" on stderr and exits with status 2 (no abort, no stack trace), so
+// Flag validation for the example tools (header only). A bad flag value is misuse, not a bug: the
+// tool prints "error: <message>" on stderr and exits with status 2 (no abort, no stack trace), so
 // that scripts and tests can tell misuse from a crash. glog's CHECK stays for internal invariants.
 
 #include <cstdlib>

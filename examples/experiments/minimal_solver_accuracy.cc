@@ -1,5 +1,5 @@
 // One gravity-aware minimal solver, or a variant of the 4-point solver, on synthetic three-view
-// scenes (math note section 6): the raw rays and each camera's measured gravity in, per-view
+// scenes (derivations.md section 8.5): the raw rays and each camera's measured gravity in, per-view
 // rotation and translation errors of its best-ranked candidate against the ground truth out, one
 // line per trial and a summary line of medians. paper_experiments runs every method at the paper's
 // fixed levels; this tool runs one solver at any noise, focal length and number of triplets, and
@@ -29,13 +29,14 @@
 #include "trigrav/initializers/trifocal_3pt.h"
 #include "trigrav/initializers/trifocal_4pt.h"
 
-DEFINE_string(solver,
-              "4pt",
-              "Solver: 3pt (decoupled, best-ranked candidate), 3pt-sextic (the paper's system), "
-              "4pt (trigrav's default pipeline), 4pt-note (math note 3.3: no polish), "
-              "4pt-paper (paper III-D: enforced, no translation re-solve, no polish), "
-              "4pt-closed-form (paper eqs c8-c11, no enforcement), 4pt-least-squares (math note "
-              "3.2)");
+DEFINE_string(
+    solver,
+    "4pt",
+    "Solver: 3pt (decoupled, best-ranked candidate), 3pt-sextic (the paper's system), "
+    "4pt (trigrav's default pipeline), 4pt-unpolished (derivations.md section 4.3: no polish), "
+    "4pt-paper (paper III-D: enforced, no translation re-solve, no polish), "
+    "4pt-closed-form (paper eqs c8-c11, no enforcement), 4pt-least-squares (derivations.md "
+    "section 4.2)");
 DEFINE_double(noise_px, 1.0, "Image noise sigma in pixels (all three views).");
 DEFINE_double(imu_noise_deg, 0.0, "IMU noise sigma in degrees on each view's pitch and roll.");
 DEFINE_int32(points, 4, "Triplets per scene (the 3pt solvers need exactly 3).");
@@ -84,7 +85,7 @@ const std::map<std::string, GravitySolver>& Solvers() {
          return trigrav::SolveTrifocal3ptSextic(x1, x2, x3, g1, g2, g3, out);
        }},
       {"4pt", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 1)},
-      {"4pt-note", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 0)},
+      {"4pt-unpolished", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 0)},
       {"4pt-paper", Trifocal4pt(Trifocal4ptRecovery::kEnforced, false, 0)},
       {"4pt-closed-form", Trifocal4pt(Trifocal4ptRecovery::kPaperClosedForm, false, 0)},
       {"4pt-least-squares", Trifocal4pt(Trifocal4ptRecovery::kLeastSquares, false, 0)},

@@ -1,4 +1,4 @@
-// The synthetic experiments of the paper (Section IV; protocol of math note section 6) on
+// The synthetic experiments of the paper (Section IV; protocol of derivations.md section 8.5) on
 // minimal samples, run on trigrav's own solvers side by side:
 //   stability   5000 noise-free scenes: log10 rotation / translation error densities and a summary
 //               (median, p99, mean, max, and the mean of log10 errors);

@@ -4,9 +4,10 @@
     paper_stability.png  densities of log10 rotation / translation errors, 5000 noise-free scenes
     paper_noise.png      median errors against image noise (minimal samples)
     paper_imu.png        median errors against IMU pitch and roll noise at 1 px (minimal samples)
-    paper_sample20.png   20 triplets each: RANSAC (dashed) vs RANSAC + bundle adjustment (solid)
 
-    /usr/bin/python3 examples/plot_paper_experiments.py <csv folder> <png folder>
+(The 20-triplet experiment is plotted by examples/initialize_and_refine/plot_raw_vs_refined.py.)
+
+    /usr/bin/python3 plot_paper_experiments.py <csv folder> <png folder>
 """
 import csv
 import os
@@ -18,16 +19,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 DPI = 64
-METHODS = ["8pt", "5pt", "7pt-linear", "3pt-sextic", "4pt-paper", "3pt", "4pt"]
-LABELS = {
-    "8pt": "8pt-Hartley-2view",
-    "5pt": "5pt-Nister-2view",
-    "7pt-linear": "7pt-Hartley-3view",
-    "3pt-sextic": "3pt-Our-3view (paper)",
-    "4pt-paper": "4pt-Our-3view (paper)",
-    "3pt": "trigrav 3pt (decoupled)",
-    "4pt": "trigrav 4pt (default)",
-}
+# kInitialSolvers, in its order, and the paper's 4-point variant: one colour per method in every plot.
+METHODS = ["3pt", "3pt-sextic", "4pt", "7pt-linear", "5pt", "8pt", "4pt-paper"]
 STYLE = {m: dict(color=c) for m, c in zip(METHODS, plt.rcParams["axes.prop_cycle"].by_key()["color"])}
 STYLE["3pt"]["linewidth"] = STYLE["4pt"]["linewidth"] = 2.2
 
@@ -44,7 +37,7 @@ def plot_stability(folder, out):
         for method in METHODS:
             sel = [r for r in rows if r["method"] == method and r["quantity"] == quantity]
             x = [(float(r["log10_lo"]) + float(r["log10_hi"])) / 2 for r in sel]
-            ax.plot(x, [float(r["density"]) for r in sel], label=LABELS[method], **STYLE[method])
+            ax.plot(x, [float(r["density"]) for r in sel], label=method, **STYLE[method])
         ax.set_xlim(-16.5, -4)
         ax.set_xlabel(f"log10 {quantity} error (deg)")
         ax.set_ylabel("density")
@@ -55,12 +48,12 @@ def plot_stability(folder, out):
     figure.savefig(os.path.join(out, "paper_stability.png"), dpi=DPI)
 
 
-def median_panels(axes, rows, x_column, methods, labels, styles, title):
+def median_panels(axes, rows, x_column, title):
     for ax, (metric, name) in zip(axes, [("rotation_deg", "rotation"), ("translation_deg", "translation")]):
-        for method in methods:
+        for method in METHODS:
             sel = sorted((r for r in rows if r["method"] == method), key=lambda r: float(r[x_column]))
             ax.plot([float(r[x_column]) for r in sel], [float(r[metric]) for r in sel], marker="o",
-                    markersize=3, label=labels[method], **styles[method])
+                    markersize=3, label=method, **STYLE[method])
         ax.set_ylabel(f"median {name} error (deg)")
         ax.set_title(title)
         ax.grid(alpha=0.3)
@@ -69,7 +62,7 @@ def median_panels(axes, rows, x_column, methods, labels, styles, title):
 def plot_noise(folder, out):
     rows = read(folder, "noise")
     figure, axes = plt.subplots(1, 2, figsize=(11, 3.8))
-    median_panels(axes, rows, "noise_px", METHODS, LABELS, STYLE, "image noise, minimal samples")
+    median_panels(axes, rows, "noise_px", "image noise, minimal samples")
     for ax in axes:
         ax.set_xlabel("image noise sigma (px)")
     axes[0].legend(fontsize=7)
@@ -81,7 +74,7 @@ def plot_imu(folder, out):
     figure, axes = plt.subplots(2, 2, figsize=(11, 7))
     for column, (name, x_column) in enumerate([("pitch", "pitch_deg"), ("roll", "roll_deg")]):
         rows = read(folder, name)
-        median_panels([axes[0][column], axes[1][column]], rows, x_column, METHODS, LABELS, STYLE,
+        median_panels([axes[0][column], axes[1][column]], rows, x_column,
                       f"IMU {name} noise at 1 px, minimal samples")
         axes[1][column].set_xlabel(f"IMU {name} noise sigma (deg)")
     axes[0][0].legend(fontsize=7)
@@ -89,36 +82,12 @@ def plot_imu(folder, out):
     figure.savefig(os.path.join(out, "paper_imu.png"), dpi=DPI)
 
 
-def plot_sample20(folder, out):
-    rows = read(folder, "sample20")
-    # trigrav's solvers only: the optional peer rows (opencv-*, opengv-*) are not plotted.
-    solvers = [s for s in dict.fromkeys(r["method"].split("+")[0] for r in rows) if s in STYLE]
-    methods, labels, styles = [], {}, {}
-    for solver in solvers:
-        for suffix, dash in [("+ransac", "--"), ("+ransac+ba", "-")]:
-            methods.append(solver + suffix)
-            labels[solver + suffix] = LABELS.get(solver, solver) + (" + BA" if "ba" in suffix else "")
-            styles[solver + suffix] = dict(color=STYLE[solver]["color"], linestyle=dash)
-    figure, axes = plt.subplots(2, 3, figsize=(14, 7))
-    panels = [("noise_px", lambda r: r["pitch_deg"] == "0" and r["roll_deg"] == "0", "image noise (px)"),
-              ("pitch_deg", lambda r: r["noise_px"] == "1" and r["roll_deg"] == "0", "IMU pitch noise (deg), 1 px"),
-              ("roll_deg", lambda r: r["noise_px"] == "1" and r["pitch_deg"] == "0", "IMU roll noise (deg), 1 px")]
-    for column, (x_column, keep, xlabel) in enumerate(panels):
-        median_panels([axes[0][column], axes[1][column]], [r for r in rows if keep(r)], x_column, methods,
-                      labels, styles, "20 triplets: RANSAC (dashed), + BA (solid)")
-        axes[1][column].set_xlabel(xlabel)
-    axes[0][0].legend(fontsize=6, ncol=2)
-    figure.tight_layout()
-    figure.savefig(os.path.join(out, "paper_sample20.png"), dpi=DPI)
-
-
 def main(folder, out):
     os.makedirs(out, exist_ok=True)
     plot_stability(folder, out)
     plot_noise(folder, out)
     plot_imu(folder, out)
-    plot_sample20(folder, out)
-    print(f"wrote paper_stability, paper_noise, paper_imu, paper_sample20 PNGs to {out}")
+    print(f"wrote paper_stability, paper_noise, paper_imu PNGs to {out}")
 
 
 if __name__ == "__main__":

@@ -1,11 +1,13 @@
 // Numerical stability of the gravity-aware minimal solvers on noise-free synthetic scenes (math
-// note 4.5 / 5 / 6): SolveTrifocal3pt (decoupled), SolveTrifocal3ptSextic (the paper's system) and
-// SolveTrifocal4pt on the same scenes. Scenes have 4 points; the 3-point solvers get the first 3.
-// Errors are in the original camera frames (gravity overloads), in degrees, pooled over views 2 and
-// 3; for the 3-point solvers both the best-ranked candidate (what a caller gets) and the
-// oracle-best candidate are reported.
+// derivations.md sections 9, 8.1 and 8.5): SolveTrifocal3pt (decoupled), SolveTrifocal3ptSextic
+// (the paper's system) and SolveTrifocal4pt on the same scenes. Scenes have 4 points; the 3-point
+// solvers get the first 3. Errors are in the original camera frames (gravity overloads), in
+// degrees, pooled over views 2 and 3; for the 3-point solvers both the best-ranked candidate (what
+// a caller gets) and the oracle-best candidate are reported.
 //
 //   solver_stability --trials=5000 --seed=1
+
+#include <gflags/gflags.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,8 +17,6 @@
 #include <random>
 #include <string>
 #include <vector>
-
-#include <gflags/gflags.h>
 
 #include "common/require_flag.h"
 #include "trigrav/evaluation/pose_errors.h"
@@ -28,7 +28,8 @@
 DEFINE_int32(trials, 5000, "Number of synthetic scenes.");
 DEFINE_uint64(seed, 1, "Random seed; the same seed gives the same output.");
 DEFINE_double(noise_px, 0.0, "Image noise sigma in pixels (0: the stability experiment).");
-DEFINE_double(found_deg, 1e-6,
+DEFINE_double(found_deg,
+              1e-6,
               "A candidate counts as the truth if its rotation and translation errors (both views) "
               "are below this many degrees.");
 
@@ -36,8 +37,12 @@ namespace {
 
 using trigrav::ThreeViewPose;
 using Rays = std::vector<Eigen::Vector3d>;
-using Solver = std::function<int(const Rays&, const Rays&, const Rays&, const Eigen::Vector3d&,
-                                 const Eigen::Vector3d&, const Eigen::Vector3d&,
+using Solver = std::function<int(const Rays&,
+                                 const Rays&,
+                                 const Rays&,
+                                 const Eigen::Vector3d&,
+                                 const Eigen::Vector3d&,
+                                 const Eigen::Vector3d&,
                                  std::vector<ThreeViewPose>*)>;
 
 constexpr double kNoSolutionDeg = 180.0;
@@ -53,7 +58,8 @@ struct Statistics {
 
 Rays FirstN(const Rays& rays, int n) { return Rays(rays.begin(), rays.begin() + n); }
 
-void AddErrors(const trigrav::ThreeViewPoseErrors& e, std::vector<double>* rotation,
+void AddErrors(const trigrav::ThreeViewPoseErrors& e,
+               std::vector<double>* rotation,
                std::vector<double>* translation) {
   for (int k = 0; k < 2; ++k) {
     rotation->push_back(trigrav::Log10Error(e.rotation_deg[k]));
@@ -135,10 +141,10 @@ int main(int argc, char** argv) {
     for (Statistics& stats : all) RunScene(scene, &stats);
   }
 
-  std::printf("%d scenes, seed %llu, %.2f px noise; log10 of errors in deg, views 2 and 3 pooled;\n"
-              "found = some candidate within %.0e deg (rotation and translation, both views)\n\n",
-              FLAGS_trials, static_cast<unsigned long long>(FLAGS_seed), FLAGS_noise_px,
-              FLAGS_found_deg);
+  std::printf(
+      "%d scenes, seed %llu, %.2f px noise; log10 of errors in deg, views 2 and 3 pooled;\n"
+      "found = some candidate within %.0e deg (rotation and translation, both views)\n\n",
+      FLAGS_trials, static_cast<unsigned long long>(FLAGS_seed), FLAGS_noise_px, FLAGS_found_deg);
   std::printf("%-15s %-7s %9s %9s %9s %9s %9s %9s %9s\n", "solver", "pick", "rot med", "rot p99",
               "tra med", "tra p99", "found", "no sol", "cands");
   for (const Statistics& stats : all) {

@@ -7,13 +7,13 @@
 //             and IMU pitch / roll noise 0.25-1 deg (1 px), with the yaw-only and the gravity-prior
 //             rotation models: one CSV row per setting (plot_raw_vs_refined.py);
 //   sample20  equal sample sizes (the paper protocol's last experiment): every method gets the same
-//             20 triplets without outliers, 1000 scenes per level, image noise 0-2 px and IMU pitch /
-//             roll noise 0.25-1 deg at 1 px, threshold 3 px x max(1, sigma / 1 px); raw and refined
-//             from one InitializeAndRefine call, yaw-only without IMU noise, gravity prior with
-//             sigma = the IMU noise otherwise, both from the paper's upright RANSAC. Built with OpenCV
-//             / OpenGV (examples/peers), one more row per peer (--peers): its five-point RANSAC on
-//             pairs (1,2), (1,3) of the same scenes at the same threshold, without gravity. One CSV
-//             row per method, stage and level (plot_raw_vs_refined.py).
+//             20 triplets without outliers, 1000 scenes per level, image noise 0-2 px and IMU pitch
+//             / roll noise 0.25-1 deg at 1 px, threshold 3 px x max(1, sigma / 1 px); raw and
+//             refined from one InitializeAndRefine call, yaw-only without IMU noise, gravity prior
+//             with sigma = the IMU noise otherwise, both from the paper's upright RANSAC. Built
+//             with OpenCV / OpenGV (examples/peers), one more row per peer (--peers): its
+//             five-point RANSAC on pairs (1,2), (1,3) of the same scenes at the same threshold,
+//             without gravity. One CSV row per method, stage and level (plot_raw_vs_refined.py).
 // Errors (pose_errors.h): rotation and translation-direction errors of views 2 and 3 pooled (deg),
 // relative-scale error |log(s_est / s_gt)|, s = |C3| / |C2|; medians (statistics.h) over the
 // estimates that returned a pose, failures counted apart.
@@ -64,18 +64,23 @@ DEFINE_double(loss_scale_px, 2.0, "single: scale of the robust loss in pixels.")
 DEFINE_double(gravity_sigma_deg, 0.5, "single: IMU angular sigma of the gravity prior in degrees.");
 DEFINE_double(threshold_px, 2.0, "single: inlier threshold in pixels (RANSAC, re-classification).");
 DEFINE_double(noise_px, 1.0, "single: image noise sigma in pixels (all three views).");
-DEFINE_double(imu_noise_deg, 0.0, "single: IMU noise sigma in degrees on each view's pitch and roll.");
+DEFINE_double(imu_noise_deg,
+              0.0,
+              "single: IMU noise sigma in degrees on each view's pitch and roll.");
 DEFINE_double(outlier_ratio, 0.2, "single, sweep: fraction of outlier triplets.");
 DEFINE_int32(points, 100, "Triplets per scene (sample20: default 20).");
 DEFINE_int32(trials,
              20,
              "Scenes (single: default 20; sweep: per setting, default 50; sample20: per level, "
              "default 1000).");
-DEFINE_int32(print_trials, 0, "single: print the errors and the Ceres summary of this many trials.");
+DEFINE_int32(print_trials,
+             0,
+             "single: print the errors and the Ceres summary of this many trials.");
 DEFINE_int32(max_iterations, 50, "single: Ceres iterations.");
-DEFINE_bool(local_optimization,
-            true,
-            "single: RANSAC local optimisation (the raw pose is then already a non-minimal estimate).");
+DEFINE_bool(
+    local_optimization,
+    true,
+    "single: RANSAC local optimisation (the raw pose is then already a non-minimal estimate).");
 DEFINE_int32(reclassification_rounds,
              1,
              "single: re-classify the inliers after a refinement and refine again.");
@@ -86,10 +91,11 @@ DEFINE_uint64(seed, 1, "Seed of the scenes (the same for every solver and model)
 DEFINE_int32(threads, 2, "sweep, sample20: worker threads.");
 DEFINE_string(output, "", "sweep, sample20: CSV file to write (default: sweep.csv, sample20.csv).");
 DEFINE_bool(quick, false, "sweep, sample20: a few settings and trials, a smoke test.");
-DEFINE_bool(peers,
-            kBuiltWithPeers,
-            "sample20: one more row per OpenCV / OpenGV five-point RANSAC (needs a build with them; "
-            "default: on if built with them).");
+DEFINE_bool(
+    peers,
+    kBuiltWithPeers,
+    "sample20: one more row per OpenCV / OpenGV five-point RANSAC (needs a build with them; "
+    "default: on if built with them).");
 
 namespace {
 
@@ -113,8 +119,8 @@ void RequireOnlyFor(Experiment experiment,
                     std::initializer_list<const char*> flags) {
   if (std::find(readers.begin(), readers.end(), experiment) != readers.end()) return;
   for (const char* flag : flags) {
-    RequireFlag(IsDefault(flag), std::string("--") + flag + " does not apply to --experiment=" +
-                                     FLAGS_experiment);
+    RequireFlag(IsDefault(flag),
+                std::string("--") + flag + " does not apply to --experiment=" + FLAGS_experiment);
   }
 }
 
@@ -191,10 +197,11 @@ void RunSingle() {
   scene_options.imu_roll_noise_deg = FLAGS_imu_noise_deg;
   scene_options.outlier_ratio = FLAGS_outlier_ratio;
 
-  std::printf("InitializeAndRefine on %d synthetic scenes (seed %llu): %d triplets each, %.0f %% "
-              "outliers, %g px image noise, ",
-              FLAGS_trials, static_cast<unsigned long long>(FLAGS_seed), FLAGS_points,
-              100.0 * FLAGS_outlier_ratio, FLAGS_noise_px);
+  std::printf(
+      "InitializeAndRefine on %d synthetic scenes (seed %llu): %d triplets each, %.0f %% "
+      "outliers, %g px image noise, ",
+      FLAGS_trials, static_cast<unsigned long long>(FLAGS_seed), FLAGS_points,
+      100.0 * FLAGS_outlier_ratio, FLAGS_noise_px);
   if (FLAGS_imu_noise_deg > 0.0) {
     std::printf("gravity off by %g deg (pitch and roll sigma)\n", FLAGS_imu_noise_deg);
   } else {
@@ -250,8 +257,9 @@ void RunSingle() {
   }
   if (FLAGS_print_trials > 0) std::printf("\n");
   const int estimates = FLAGS_trials - failures;
-  std::printf("median error, views 2 and 3 pooled  rotation (deg)  translation (deg)  "
-              "|log scale ratio|\n");
+  std::printf(
+      "median error, views 2 and 3 pooled  rotation (deg)  translation (deg)  "
+      "|log scale ratio|\n");
   std::printf("  RANSAC estimate (raw)             %14.4f  %17.4f  %17.5f\n",
               trigrav::Median(raw_errors.rotation_deg), trigrav::Median(raw_errors.translation_deg),
               trigrav::Median(raw_errors.relative_scale));
@@ -260,10 +268,11 @@ void RunSingle() {
               trigrav::Median(refined_errors.translation_deg),
               trigrav::Median(refined_errors.relative_scale));
   const double per_estimate = estimates > 0 ? 1.0 / estimates : 0.0;
-  std::printf("inliers per scene (mean): %.1f true; RANSAC found %.1f (%.1f true), refinement kept "
-              "%.1f (%.1f true)\n",
-              static_cast<double>(true_inliers) / FLAGS_trials, ransac_found * per_estimate,
-              ransac_true * per_estimate, refined_found * per_estimate, refined_true * per_estimate);
+  std::printf(
+      "inliers per scene (mean): %.1f true; RANSAC found %.1f (%.1f true), refinement kept "
+      "%.1f (%.1f true)\n",
+      static_cast<double>(true_inliers) / FLAGS_trials, ransac_found * per_estimate,
+      ransac_true * per_estimate, refined_found * per_estimate, refined_true * per_estimate);
   std::printf("time per call (median): RANSAC %.2f ms, refinement %.2f ms\n",
               trigrav::Median(ransac_ms), trigrav::Median(refinement_ms));
   std::printf("failures: %d of %d calls\n", failures, FLAGS_trials);
@@ -349,8 +358,6 @@ std::vector<Setting> SweepSettings() {
 }
 
 void RunSweep(std::ofstream* csv) {
-  RequireFlag(FLAGS_threshold_sigmas > 0.0 && std::isfinite(FLAGS_threshold_sigmas),
-              "--threshold_sigmas must be positive and finite");
   if (IsDefault("trials")) FLAGS_trials = 50;
   if (FLAGS_quick) FLAGS_trials = std::min(FLAGS_trials, 5);
 
@@ -366,8 +373,8 @@ void RunSweep(std::ofstream* csv) {
   *csv << "solver,model,noise_px,imu_deg,trials,failures,raw_rotation_deg,raw_translation_deg,"
           "raw_scale,refined_rotation_deg,refined_translation_deg,refined_scale,refinement_ms\n";
   for (const SweepResult& r : results) {
-    *csv << trigrav::InitialSolverName(r.setting.solver) << ',' << ModelName(r.setting.model)
-         << ',' << r.setting.noise_px << ',' << r.setting.imu_deg << ',' << FLAGS_trials << ','
+    *csv << trigrav::InitialSolverName(r.setting.solver) << ',' << ModelName(r.setting.model) << ','
+         << r.setting.noise_px << ',' << r.setting.imu_deg << ',' << FLAGS_trials << ','
          << r.failures << ',' << r.raw.rotation << ',' << r.raw.translation << ',' << r.raw.scale
          << ',' << r.refined.rotation << ',' << r.refined.translation << ',' << r.refined.scale
          << ',' << r.refinement_ms << '\n';
@@ -435,7 +442,7 @@ std::vector<trigrav::LevelErrors> RunSample20Chunk(const trigrav::PaperLevel& le
     for (std::size_t p = 0; p < Peers().size(); ++p) {
       const trigrav::peers::EstimatorResult peer = Peers()[p].estimate(observations, threshold_px);
       errors[2 * trigrav::kInitialSolvers.size() + p].Add(scene.ground_truth, peer.success,
-                                                           peer.pose, peer.relative_scale_known);
+                                                          peer.pose, peer.relative_scale_known);
     }
 #endif
   }
@@ -443,11 +450,9 @@ std::vector<trigrav::LevelErrors> RunSample20Chunk(const trigrav::PaperLevel& le
 }
 
 void RunSample20(std::ofstream* csv) {
-  RequireFlag(!FLAGS_peers || kBuiltWithPeers, "--peers: built without OpenCV and OpenGV");
 #ifdef TRIGRAV_WITH_PEERS
   for (const trigrav::peers::NamedEstimator& peer : Peers()) {
-    std::fprintf(stderr, "peer %s (no gravity): %s\n", peer.name.c_str(),
-                 peer.description.c_str());
+    std::fprintf(stderr, "peer %s (no gravity): %s\n", peer.name.c_str(), peer.description.c_str());
   }
 #endif
   // The sample20 levels of the paper protocol, with their place in it (and so their seeds).
@@ -531,6 +536,9 @@ int main(int argc, char** argv) {
   if (experiment == E::kSample20 && IsDefault("points")) FLAGS_points = 20;
   RequireFlag(FLAGS_points >= 8, "--points must be >= 8 (the eight-point baseline's sample)");
   RequireFlag(FLAGS_threads >= 1 && FLAGS_threads <= 256, "--threads must be in [1, 256]");
+  RequireFlag(FLAGS_threshold_sigmas > 0.0 && std::isfinite(FLAGS_threshold_sigmas),
+              "--threshold_sigmas must be positive and finite");
+  RequireFlag(!FLAGS_peers || kBuiltWithPeers, "--peers: built without OpenCV and OpenGV");
   if (FLAGS_output.empty()) FLAGS_output = FLAGS_experiment + ".csv";
   // Opened before the run, so that an unwritable path fails at once, not after the experiment.
   std::ofstream csv(FLAGS_output);

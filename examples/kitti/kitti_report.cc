@@ -211,10 +211,9 @@ void PrintRatioTable(const std::vector<const MethodSummary*>& rows,
     cells.push_back({row->method + " " + row->stage});
     for (const MethodSummary* column : columns) {
       char cell[64];
-      std::snprintf(cell, sizeof(cell), "%.2f / %.2f / %.2f",
-                    row->mean_time_ms / column->mean_time_ms,
-                    row->rotation_deg / column->rotation_deg,
-                    row->translation_deg / column->translation_deg);
+      std::snprintf(
+          cell, sizeof(cell), "%.2f / %.2f / %.2f", row->mean_time_ms / column->mean_time_ms,
+          row->rotation_deg / column->rotation_deg, row->translation_deg / column->translation_deg);
       cells.back().push_back(cell);
     }
   }

@@ -138,8 +138,8 @@ double GravitySigmaDegFromFlags() {
   return FLAGS_imu_noise_deg > 0.0 ? FLAGS_imu_noise_deg : kExactGravitySigmaDeg;
 }
 
-// A bad value prints "error: <message>" and exits with status 2 (common/require_flag.h).
-// Everything is checked before any file is read.
+// A bad value prints "error: <message>" and exits with status 2 (common/require_flag.h). With
+// TrigravMethodsFromFlags, everything is checked before any file is read.
 void ValidateFlags() {
   RequireFlag(!FLAGS_kitti_dir.empty(), "--kitti_dir is required (the KITTI odometry folder)");
   RequireFlag(fs::is_directory(FLAGS_kitti_dir), "--kitti_dir: no folder " + FLAGS_kitti_dir);
@@ -278,16 +278,16 @@ int main(int argc, char** argv) {
   gflags::ParseCommandLineFlags(&argc, &argv, true);
   ValidateFlags();
 
-  kitti::KittiSequence sequence;
-  std::string error;
-  RequireFlag(kitti::LoadKittiSequence(FLAGS_kitti_dir, FLAGS_sequence, FLAGS_first_frame,
-                                       FLAGS_last_frame, &sequence, &error),
-              error);
   std::vector<kitti::Method> methods = TrigravMethodsFromFlags();
   const std::size_t num_trigrav_methods = methods.size();
 #ifdef TRIGRAV_WITH_PEERS
   if (FLAGS_peers) kitti::AppendPeerMethods(FLAGS_threshold_px, &methods);
 #endif
+  kitti::KittiSequence sequence;
+  std::string error;
+  RequireFlag(kitti::LoadKittiSequence(FLAGS_kitti_dir, FLAGS_sequence, FLAGS_first_frame,
+                                       FLAGS_last_frame, &sequence, &error),
+              error);
   const std::string cache_dir = FLAGS_cache_dir.empty()
                                     ? (fs::path(FLAGS_output_dir) / "feature_cache").string()
                                     : FLAGS_cache_dir;
@@ -307,8 +307,8 @@ int main(int argc, char** argv) {
 
   const fs::path out(FLAGS_output_dir);
   for (const auto& [file, written] :
-       {std::pair{"poses.csv", kitti::WritePoseRecordsCsv((out / "poses.csv").string(),
-                                                          evaluation.records)},
+       {std::pair{"poses.csv",
+                  kitti::WritePoseRecordsCsv((out / "poses.csv").string(), evaluation.records)},
         std::pair{"summary.csv",
                   kitti::WriteSummaryCsv((out / "summary.csv").string(), evaluation.summaries)},
         std::pair{"trajectories.csv",

@@ -116,9 +116,9 @@ bool EvaluateSequence(const KittiSequence& sequence,
         const ThreeViewPose ground_truth = sequence.GroundTruthTriplet(frame);
         for (const Method& method : methods) {
           for (const MethodPose& pose : method.run(triplet.observations, options.seed + frame)) {
-            records_of_triplet[t].push_back(EvaluatePose(
-                frame, method.name, pose, static_cast<int>(triplet.tracks.size()), ground_truth,
-                exact_gravity[t + 1], exact_gravity[t + 2]));
+            records_of_triplet[t].push_back(
+                EvaluatePose(frame, method.name, pose, static_cast<int>(triplet.tracks.size()),
+                             ground_truth, exact_gravity[t + 1], exact_gravity[t + 2]));
           }
         }
         triplet.observations = {};

@@ -27,7 +27,7 @@ struct SequenceEvaluationOptions {
   double imu_noise_deg = 0.0;  // sigma of each frame's pitch and roll error (ImuGravityInCameras)
   std::uint64_t seed = 1;      // IMU noise; triplet f's RANSAC seed is seed + f
   int threads = 2;
-  bool show_progress = true;   // "\r<stage> done/total" on stderr
+  bool show_progress = true;  // "\r<stage> done/total" on stderr
 };
 
 struct SequenceEvaluation {

@@ -85,20 +85,17 @@ std::vector<NamedEstimator> OpenCvEstimators() {
       "images, summed) <= threshold^2; the USAC path ignores maxIters (checked on OpenCV 4.6; its "
       "source caps USAC at 1000 iterations); ";
   return {
-      {"opencv-ransac",
-       "raw",
+      {"opencv-ransac", "raw",
        "cv::findEssentialMat(cv::RANSAC) on pairs (1,2), (1,3): Nister 5-point, inlier iff the "
        "Sampson distance <= threshold, maxIters " +
            std::to_string(kPeerMaxIterations) + ", no refinement; " + CommonNote(),
        PairwiseEstimator(OpenCvPair(cv::RANSAC))},
-      {"opencv-usac-magsac",
-       "raw",
+      {"opencv-usac-magsac", "raw",
        "cv::findEssentialMat(cv::USAC_MAGSAC) on pairs (1,2), (1,3): Stewenius 5-point, MAGSAC++ "
        "score, sigma-consensus LO, final least-squares polish; " +
            usac_note + CommonNote(),
        PairwiseEstimator(OpenCvPair(cv::USAC_MAGSAC))},
-      {"opencv-usac-default",
-       "raw",
+      {"opencv-usac-default", "raw",
        "cv::findEssentialMat(cv::USAC_DEFAULT) on pairs (1,2), (1,3): Stewenius 5-point, MSAC "
        "score, SPRT, inner + iterative LO, final least-squares polish; " +
            usac_note + CommonNote(),

@@ -59,11 +59,11 @@ PairEstimator OpenGvPair(SacProblem::Algorithm algorithm, bool refine) {
       ransac.sac_model_->optimizeModelCoefficients(ransac.inliers_, ransac.model_coefficients_,
                                                    cam2_in_cam1);
     }
-    const Eigen::Matrix3d R12 = cam2_in_cam1.block<3, 3>(0, 0);
-    const Eigen::Vector3d t12 = cam2_in_cam1.col(3);
+    CameraPose cam1_from_cam2;  // [R12 | t12]
+    cam1_from_cam2.R = cam2_in_cam1.block<3, 3>(0, 0);
+    cam1_from_cam2.t = cam2_in_cam1.col(3);
     pair.success = true;
-    pair.cam_from_cam1.R = R12.transpose();
-    pair.cam_from_cam1.t = -R12.transpose() * t12;
+    pair.cam_from_cam1 = cam1_from_cam2.Inverse();
     pair.inliers.assign(observations.size(), 0);
     for (const int i : ransac.inliers_) pair.inliers[i] = 1;
     return pair;
@@ -147,20 +147,17 @@ NamedMinimalSolver OpenGvMinimalSolver(
 
 std::vector<NamedEstimator> OpenGvEstimators() {
   return {
-      {"opengv-ransac-stewenius",
-       "raw",
+      {"opengv-ransac-stewenius", "raw",
        "opengv::sac::Ransac<CentralRelativePoseSacProblem>(STEWENIUS) on pairs (1,2), (1,3), "
        "model as returned (no refinement); " +
            RansacNote(),
        PairwiseEstimator(OpenGvPair(SacProblem::STEWENIUS, /*refine=*/false))},
-      {"opengv-ransac-nister",
-       "raw",
+      {"opengv-ransac-nister", "raw",
        "opengv::sac::Ransac<CentralRelativePoseSacProblem>(NISTER) on pairs (1,2), (1,3), model "
        "as returned (no refinement); " +
            RansacNote(),
        PairwiseEstimator(OpenGvPair(SacProblem::NISTER, /*refine=*/false))},
-      {"opengv-ransac-nister+nl",
-       "raw",
+      {"opengv-ransac-nister+nl", "raw",
        "opengv-ransac-nister, then optimizeModelCoefficients (opengv::relative_pose::"
        "optimize_nonlinear, Levenberg-Marquardt) on the RANSAC inliers; " +
            RansacNote(),

@@ -28,11 +28,11 @@ using PairEstimator = std::function<PairEstimate(
 
 // Runs pair_estimator on pairs (1,2) and (1,3) and combines the two poses with
 // trigrav::CombineTwoViewPairs on the triplets that are inliers of both pairs (relative scale from
-// the view-1 depths, math note section 7); camera 2 is scaled to |centre| = 1. If the scale cannot
-// be found (no common inlier, kappa <= 0), camera 3 keeps |centre| = 1 and the message says so: the
-// rotation and translation-direction errors do not depend on it. time_s covers both pairs and the
-// combination. Throws std::invalid_argument for invalid observations (ThreeViewObservations::Check)
-// or a threshold that is not positive and finite.
+// the view-1 depths, derivations.md section 7); camera 2 is scaled to |centre| = 1. If the scale
+// cannot be found (no common inlier, kappa <= 0), camera 3 keeps |centre| = 1 and the message says
+// so: the rotation and translation-direction errors do not depend on it. time_s covers both pairs
+// and the combination. Throws std::invalid_argument for invalid observations
+// (ThreeViewObservations::Check) or a threshold that is not positive and finite.
 Estimator PairwiseEstimator(PairEstimator pair_estimator);
 
 }  // namespace trigrav::peers

@@ -23,8 +23,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <iostream>
 #include <functional>
+#include <iostream>
 #include <limits>
 #include <random>
 #include <string>
@@ -363,7 +363,6 @@ void RunAccuracy() {
                       trigrav::Median(a.translation_deg) / trigrav::Median(b.translation_deg));
       });
 }
-
 
 }  // namespace
 

@@ -39,8 +39,8 @@ using Estimator =
 struct NamedEstimator {
   // For table rows: trigrav's InitialSolverName ("3pt", ...) or the peer's name ("opencv-ransac").
   std::string name;
-  // "raw" (the robust estimate as returned) or "yaw-only" (trigrav's, refined by InitializeAndRefine
-  // with the yaw-only rotation model).
+  // "raw" (the robust estimate as returned) or "yaw-only" (trigrav's, refined by
+  // InitializeAndRefine with the yaw-only rotation model).
   std::string stage;
   std::string description;  // API, method, threshold meaning, iterations and confidence
   Estimator estimate;

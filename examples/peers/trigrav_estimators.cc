@@ -27,7 +27,8 @@ EstimatorResult RobustEstimate(const ThreeViewObservations& observations,
                                const RobustThreeViewOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   EstimatorResult result;
-  static_cast<RobustThreeViewEstimate&>(result) = EstimateThreeViewPoseRobust(observations, options);
+  static_cast<RobustThreeViewEstimate&>(result) =
+      EstimateThreeViewPoseRobust(observations, options);
   result.time_s = SecondsSince(start);
   return result;
 }
@@ -54,8 +55,7 @@ std::string RansacDescription(InitialSolver solver) {
   std::snprintf(settings, sizeof(settings), "MSAC + LO, confidence %g, %d-%d iterations, seed 0",
                 defaults.confidence, defaults.min_iterations, defaults.max_iterations);
   return std::string("trigrav::EstimateThreeViewPoseRobust, InitialSolver ") +
-         InitialSolverName(solver) +
-         (UsesGravity(solver) ? " (with gravity)" : " (no gravity)") +
+         InitialSolverName(solver) + (UsesGravity(solver) ? " (with gravity)" : " (no gravity)") +
          "; inlier iff the largest reprojection error over the 3 views of the midpoint-"
          "triangulated triplet <= threshold; " +
          settings;
@@ -106,10 +106,11 @@ NamedMinimalSolver GravityMinimalSolver(std::string name,
 }
 
 NamedMinimalSolver Essential5ptMinimalSolver() {
-  NamedMinimalSolver entry{"5pt",
-                           "SolveEssential5pt: Nister five-point on pair (1,2), 5 rays; decomposes every E and "
-                           "keeps the cheirality-consistent poses",
-                           nullptr};
+  NamedMinimalSolver entry{
+      "5pt",
+      "SolveEssential5pt: Nister five-point on pair (1,2), 5 rays; decomposes every E and "
+      "keeps the cheirality-consistent poses",
+      nullptr};
   entry.prepare = [](const std::vector<MinimalProblem>& problems) {
     struct Data {
       std::vector<std::vector<Eigen::Vector3d>> x1, x2;

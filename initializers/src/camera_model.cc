@@ -1,12 +1,11 @@
 #include "trigrav/initializers/camera_model.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
-
-#include <Eigen/LU>
 
 namespace trigrav {
 namespace {

@@ -1,11 +1,10 @@
 #include "trigrav/initializers/essential_5pt.h"
 
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
-
-#include <Eigen/Cholesky>
-#include <Eigen/Geometry>
 
 #include "essential_decomposition.h"
 #include "input_checks.h"
@@ -52,8 +51,8 @@ constexpr ProductTables MakeProductTables() {
     const int* b = kMonomials[kFirstLinear + j];
     for (int i = 0; i < 4; ++i) {
       const int* a = kMonomials[kFirstLinear + i];
-      tables.linear_linear[i][j] = MonomialIndex(a[0] + b[0], a[1] + b[1], a[2] + b[2]) -
-                                   kFirstQuadratic;
+      tables.linear_linear[i][j] =
+          MonomialIndex(a[0] + b[0], a[1] + b[1], a[2] + b[2]) - kFirstQuadratic;
     }
     for (int i = 0; i < 10; ++i) {
       const int* a = kMonomials[kFirstQuadratic + i];
@@ -180,8 +179,8 @@ Eigen::Matrix<double, 10, 20> ConstraintMatrix(const Eigen::Matrix<double, 9, 4>
 // the null space of B(z) at each root.
 // Columns of the 10 x 20 system, eliminated monomials first (x^3, y^3, x^2y, xy^2, x^2z, x^2, y^2z,
 // y^2, xyz, xy), then (xz^2, xz, x, yz^2, yz, y, z^3, z^2, z, 1), as indices into kMonomials.
-constexpr std::array<int, 20> kNisterOrder = {0,  6,  1,  3,  2,  10, 7,  13, 4,  11,
-                                              5,  12, 16, 8,  14, 17, 9,  15, 18, 19};
+constexpr std::array<int, 20> kNisterOrder = {0, 6,  1,  3, 2,  10, 7, 13, 4,  11,
+                                              5, 12, 16, 8, 14, 17, 9, 15, 18, 19};
 
 struct HiddenVariableMatrix {
   internal::Polynomial<3> bx[3], by[3];
@@ -290,8 +289,8 @@ void PolishRoot(const Eigen::Matrix<double, 10, 20>& C, int max_iterations, Eige
     const Eigen::Vector3d step = (J.transpose() * J).ldlt().solve(-J.transpose() * r);
     if (!step.allFinite()) return;
     const Eigen::Vector3d candidate = *xyz + step;
-    const bool again = iteration + 1 < max_iterations &&
-                       step.norm() > 1e-9 * std::max(1.0, candidate.norm());
+    const bool again =
+        iteration + 1 < max_iterations && step.norm() > 1e-9 * std::max(1.0, candidate.norm());
     const Eigen::Matrix<double, 10, 1> r_candidate = evaluate(candidate, again ? &J : nullptr);
     if (!(r_candidate.squaredNorm() < r.squaredNorm())) return;
     *xyz = candidate;
@@ -329,7 +328,7 @@ int EssentialCandidates(const Eigen::Matrix<double, 9, 4>& basis,
     const Eigen::Matrix3d Bz = B.Evaluate(z);
     Eigen::Vector3d v = Bz.row(0).cross(Bz.row(1));
     for (const Eigen::Vector3d& candidate : {Eigen::Vector3d(Bz.row(0).cross(Bz.row(2))),
-                                            Eigen::Vector3d(Bz.row(1).cross(Bz.row(2)))}) {
+                                             Eigen::Vector3d(Bz.row(1).cross(Bz.row(2)))}) {
       if (candidate.squaredNorm() > v.squaredNorm()) v = candidate;
     }
     if (!(std::abs(v[2]) > 1e-12 * v.norm())) continue;  // no finite (x, y) for this root
@@ -344,7 +343,8 @@ int EssentialCandidates(const Eigen::Matrix<double, 9, 4>& basis,
 }  // namespace
 
 int SolveEssential5pt(const std::vector<Eigen::Vector3d>& x1,
-                      const std::vector<Eigen::Vector3d>& x2, std::vector<CameraPose>* solutions) {
+                      const std::vector<Eigen::Vector3d>& x2,
+                      std::vector<CameraPose>* solutions) {
   internal::CheckPairs("SolveEssential5pt", kNumPoints, kNumPoints, x1, x2, solutions);
   solutions->clear();
 

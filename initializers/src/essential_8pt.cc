@@ -1,10 +1,9 @@
 #include "trigrav/initializers/essential_8pt.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstddef>
 #include <limits>
-
-#include <Eigen/Geometry>
 
 #include "essential_decomposition.h"
 #include "input_checks.h"
@@ -51,7 +50,8 @@ struct Normalisation {
 }  // namespace
 
 int SolveEssential8pt(const std::vector<Eigen::Vector3d>& x1,
-                      const std::vector<Eigen::Vector3d>& x2, std::vector<CameraPose>* solutions) {
+                      const std::vector<Eigen::Vector3d>& x2,
+                      std::vector<CameraPose>* solutions) {
   internal::CheckPairs("SolveEssential8pt", kMinPoints, std::numeric_limits<std::size_t>::max(), x1,
                        x2, solutions);
   solutions->clear();

@@ -1,10 +1,9 @@
 #include "essential_decomposition.h"
 
-#include <cmath>
-#include <cstddef>
-
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
+#include <cmath>
+#include <cstddef>
 
 #include "null_space.h"
 #include "two_view_geometry.h"
@@ -19,9 +18,12 @@ constexpr double kMinParallax = 1e-10;
 
 }  // namespace
 
-int ChoosePoseByCheirality(const Eigen::Matrix3d& R_a, const Eigen::Matrix3d& R_b,
-                           const Eigen::Vector3d& t, const std::vector<Eigen::Vector3d>& x1,
-                           const std::vector<Eigen::Vector3d>& x2, CameraPose* pose) {
+int ChoosePoseByCheirality(const Eigen::Matrix3d& R_a,
+                           const Eigen::Matrix3d& R_b,
+                           const Eigen::Vector3d& t,
+                           const std::vector<Eigen::Vector3d>& x1,
+                           const std::vector<Eigen::Vector3d>& x2,
+                           CameraPose* pose) {
   int best_count = 0;
   for (const Eigen::Matrix3d* R : {&R_a, &R_b}) {
     // Both depths are linear in t: flipping t flips both, so one pass counts both signs of t.
@@ -54,8 +56,10 @@ int ChoosePoseByCheirality(const Eigen::Matrix3d& R_a, const Eigen::Matrix3d& R_
   return best_count;
 }
 
-int PoseFromEssential(const Eigen::Matrix3d& E, const std::vector<Eigen::Vector3d>& x1,
-                      const std::vector<Eigen::Vector3d>& x2, CameraPose* pose) {
+int PoseFromEssential(const Eigen::Matrix3d& E,
+                      const std::vector<Eigen::Vector3d>& x1,
+                      const std::vector<Eigen::Vector3d>& x2,
+                      CameraPose* pose) {
   const double scale = E.cwiseAbs().maxCoeff();
   if (!(scale > 0.0) || !std::isfinite(scale)) return 0;
   // Fixed 3x3 Jacobi SVD: no heap allocation, no QR preconditioner for a square matrix.
@@ -71,8 +75,10 @@ int PoseFromEssential(const Eigen::Matrix3d& E, const std::vector<Eigen::Vector3
                                 x1, x2, pose);
 }
 
-int PoseFromExactEssential(const Eigen::Matrix3d& E_in, const std::vector<Eigen::Vector3d>& x1,
-                           const std::vector<Eigen::Vector3d>& x2, CameraPose* pose) {
+int PoseFromExactEssential(const Eigen::Matrix3d& E_in,
+                           const std::vector<Eigen::Vector3d>& x1,
+                           const std::vector<Eigen::Vector3d>& x2,
+                           CameraPose* pose) {
   const double norm = E_in.norm();
   if (!(norm > 0.0) || !std::isfinite(norm)) return 0;
   const Eigen::Matrix3d E = (std::sqrt(2.0) / norm) * E_in;

@@ -1,9 +1,8 @@
 #include "trigrav/initializers/gravity.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <stdexcept>
-
-#include <Eigen/Geometry>
 
 namespace trigrav {
 
@@ -25,12 +24,12 @@ Eigen::Matrix3d GravityAlignmentFromGravity(const Eigen::Vector3d& gravity_in_ca
     throw std::invalid_argument(
         "trigrav: gravity direction is too long (its squared length overflows)");
   }
-  // Rows of R: R g = e_y makes the middle row g^T; the first row is the camera axis least parallel to
-  // g (x, or z for a camera rolled by 90 deg) made orthogonal to g, the last completes a right-handed
-  // frame. Exact to rounding for any g, including g along -y; R = I when g = e_y.
+  // Rows of R: R g = e_y makes the middle row g^T; the first row is the camera axis least parallel
+  // to g (x, or z for a camera rolled by 90 deg) made orthogonal to g, the last completes a
+  // right-handed frame. Exact to rounding for any g, including g along -y; R = I when g = e_y.
   const Eigen::Vector3d down = gravity_in_cam / norm;
-  const Eigen::Vector3d axis = std::abs(down.x()) < std::abs(down.z()) ? Eigen::Vector3d::UnitX()
-                                                                         : Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d axis =
+      std::abs(down.x()) < std::abs(down.z()) ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
   Eigen::Vector3d first = (axis - axis.dot(down) * down).normalized();
   if (axis.z() != 0.0) first = down.cross(first);  // rotate z-based choice into the x slot
   Eigen::Matrix3d R;
@@ -44,10 +43,9 @@ Eigen::Matrix3d GravityAlignmentFromPitchRoll(double pitch_rad, double roll_rad)
   if (!std::isfinite(pitch_rad) || !std::isfinite(roll_rad)) {
     throw std::invalid_argument("trigrav: pitch or roll is not finite");
   }
-  const Eigen::Matrix3d tilt =
-      (Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitX()) *
-       Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitZ()))
-          .toRotationMatrix();
+  const Eigen::Matrix3d tilt = (Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitX()) *
+                                Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitZ()))
+                                   .toRotationMatrix();
   return tilt.transpose();
 }
 
@@ -67,7 +65,8 @@ CameraPose UnalignPose(const CameraPose& aligned_cam_from_aligned_ref,
                        const Eigen::Matrix3d& gravity_alignment_ref,
                        const Eigen::Matrix3d& gravity_alignment_cam) {
   CameraPose pose;
-  pose.R = gravity_alignment_cam.transpose() * aligned_cam_from_aligned_ref.R * gravity_alignment_ref;
+  pose.R =
+      gravity_alignment_cam.transpose() * aligned_cam_from_aligned_ref.R * gravity_alignment_ref;
   pose.t = gravity_alignment_cam.transpose() * aligned_cam_from_aligned_ref.t;
   return pose;
 }

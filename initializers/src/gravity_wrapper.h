@@ -4,9 +4,8 @@
 #ifndef TRIGRAV_INITIALIZERS_SRC_GRAVITY_WRAPPER_H_
 #define TRIGRAV_INITIALIZERS_SRC_GRAVITY_WRAPPER_H_
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "input_checks.h"
 #include "trigrav/initializers/camera_pose.h"

@@ -27,9 +27,13 @@ void CheckRays(const char* solver, const char* name, const std::vector<Eigen::Ve
 
 }  // namespace
 
-void CheckTriplets(const char* solver, std::size_t min_triplets, std::size_t max_triplets,
-                   const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
-                   const std::vector<Eigen::Vector3d>& x3, const void* solutions) {
+void CheckTriplets(const char* solver,
+                   std::size_t min_triplets,
+                   std::size_t max_triplets,
+                   const std::vector<Eigen::Vector3d>& x1,
+                   const std::vector<Eigen::Vector3d>& x2,
+                   const std::vector<Eigen::Vector3d>& x3,
+                   const void* solutions) {
   // The message is built only on failure: this runs on every solver call (the RANSAC hot path).
   auto fail = [solver](const std::string& what) {
     throw std::invalid_argument(std::string("trigrav: ") + solver + ": " + what);
@@ -48,8 +52,11 @@ void CheckTriplets(const char* solver, std::size_t min_triplets, std::size_t max
   CheckRays(solver, "x3", x3);
 }
 
-void CheckPairs(const char* solver, std::size_t min_pairs, std::size_t max_pairs,
-                const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
+void CheckPairs(const char* solver,
+                std::size_t min_pairs,
+                std::size_t max_pairs,
+                const std::vector<Eigen::Vector3d>& x1,
+                const std::vector<Eigen::Vector3d>& x2,
                 const void* solutions) {
   // As CheckTriplets: the message is built only on failure.
   auto fail = [solver](const std::string& what) {

@@ -4,11 +4,10 @@
 #ifndef TRIGRAV_INITIALIZERS_SRC_INPUT_CHECKS_H_
 #define TRIGRAV_INITIALIZERS_SRC_INPUT_CHECKS_H_
 
+#include <Eigen/Core>
 #include <cstddef>
 #include <limits>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "trigrav/initializers/camera_pose.h"
 

@@ -5,12 +5,11 @@
 #ifndef TRIGRAV_INITIALIZERS_SRC_NULL_SPACE_H_
 #define TRIGRAV_INITIALIZERS_SRC_NULL_SPACE_H_
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
-
-#include <Eigen/Core>
 
 namespace trigrav {
 namespace internal {

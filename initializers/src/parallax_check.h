@@ -14,8 +14,10 @@ namespace internal {
 // Turns a successful estimate into a failure with the reason if its inliers show no parallax
 // between views 1 and 2 (robust_three_view.h), whatever the method: if a camera 2 without baseline
 // explains more than 80 % of them within `max_error` pixels.
-void RejectWithoutParallax(const ThreeViewObservations& observations, const TripletData& data,
-                           double max_error, RobustThreeViewEstimate* estimate);
+void RejectWithoutParallax(const ThreeViewObservations& observations,
+                           const TripletData& data,
+                           double max_error,
+                           RobustThreeViewEstimate* estimate);
 
 }  // namespace internal
 }  // namespace trigrav

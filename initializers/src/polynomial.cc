@@ -1,12 +1,11 @@
 // The real-root finders of the polynomial toolkit (polynomial.h).
 #include "polynomial.h"
 
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <complex>
 #include <limits>
-
-#include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 namespace trigrav {
 namespace internal {
@@ -52,8 +51,13 @@ Polynomial<10> ScaledDerivative(const Polynomial<10>& p, int degree) {
 // Newton crawls by factors (1 - 1/n); Newton's step is used if the square root is not real. Starts
 // from the secant of the bracket (regula falsi); stops once a step is below
 // tolerance * max(1, |x|).
-double RootInBracket(const double* c, int degree, double lo, double hi, double value_lo,
-                     double value_hi, double tolerance) {
+double RootInBracket(const double* c,
+                     int degree,
+                     double lo,
+                     double hi,
+                     double value_lo,
+                     double value_hi,
+                     double tolerance) {
   const bool increasing = value_lo < 0.0;
   double x = lo - value_lo * (hi - lo) / (value_hi - value_lo);
   if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
@@ -238,8 +242,10 @@ double LargestRealCubicRoot(double a, double b, double c) {
   return x;
 }
 
-int SolveQuarticReal(const std::array<double, 5>& c, std::array<double, 4>* roots,
-                     int newton_steps, double max_imag) {
+int SolveQuarticReal(const std::array<double, 5>& c,
+                     std::array<double, 4>* roots,
+                     int newton_steps,
+                     double max_imag) {
   // Monic t^4 + b t^3 + cc t^2 + d t + e, depressed by t = y - b/4: y^4 + p y^2 + q y + r.
   const double b = c[3] / c[4], cc = c[2] / c[4], d = c[1] / c[4], e = c[0] / c[4];
   const double shift = 0.25 * b;
@@ -290,8 +296,10 @@ int SolveQuarticReal(const std::array<double, 5>& c, std::array<double, 4>* root
   return count;
 }
 
-int SolveSexticReal(const std::array<double, 7>& c, std::array<double, 6>* roots,
-                    double max_relative_imag, int newton_steps) {
+int SolveSexticReal(const std::array<double, 7>& c,
+                    std::array<double, 6>* roots,
+                    double max_relative_imag,
+                    int newton_steps) {
   // Companion matrix of the monic polynomial: ones on the subdiagonal, -c[i]/c[6] in the last
   // column.
   Eigen::Matrix<double, 6, 6> companion = Eigen::Matrix<double, 6, 6>::Zero();

@@ -94,20 +94,24 @@ double LargestRealCubicRoot(double a, double b, double c);
 // longer lowers |q(t)|; one or two suffice except near double roots). A quadratic factor whose
 // roots are complex with imaginary part at most max_imag (or only by rounding) contributes its real
 // part once. Returns the count (<= 4); order unspecified.
-int SolveQuarticReal(const std::array<double, 5>& c, std::array<double, 4>* roots,
-                     int newton_steps = 6, double max_imag = 0.0);
+int SolveQuarticReal(const std::array<double, 5>& c,
+                     std::array<double, 4>* roots,
+                     int newton_steps = 6,
+                     double max_imag = 0.0);
 
 // Real roots of a sextic c[0] + ... + c[6] t^6 with c[6] != 0: eigenvalues of the 6x6 companion
 // matrix (Eigen::EigenSolver on a fixed-size matrix), kept when the imaginary part is below
 // max_relative_imag * (1 + |re|), each then polished by guarded Newton steps. Returns the count.
-int SolveSexticReal(const std::array<double, 7>& c, std::array<double, 6>* roots,
-                    double max_relative_imag = 1e-8, int newton_steps = 3);
+int SolveSexticReal(const std::array<double, 7>& c,
+                    std::array<double, 6>* roots,
+                    double max_relative_imag = 1e-8,
+                    int newton_steps = 3);
 
 // Real roots of c[0] + ... + c[10] z^10 (Nister's degree-10 polynomial of the five-point solver).
 // Leading coefficients below 1e-14 of the largest are dropped (roots beyond ~1e14^(1/k)). The
 // polynomial is made monic and balanced, z = s u with s = Fujiwara's bound 2 max_i |a_(n-i)|^(1/i)
-// (|a_0 / 2| for i = n), so all roots u lie in [-1, 1] and the coefficients are O(1), then solved by
-// Sturm sequences: without the balancing the Sturm chain gave wrong roots in about 2 % of
+// (|a_0 / 2| for i = n), so all roots u lie in [-1, 1] and the coefficients are O(1), then solved
+// by Sturm sequences: without the balancing the Sturm chain gave wrong roots in about 2 % of
 // noise-free scenes, with it in about 0.005 %, which the consistency checks send to the robust but
 // three times slower root search through the derivatives. Returns the count.
 int SolveDegreeTenReal(const Polynomial<10>& c, std::array<double, 10>* roots);

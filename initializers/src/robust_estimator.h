@@ -32,7 +32,8 @@ class Estimator {
 
   std::size_t num_data() const { return data_.error.size(); }
 
-  void generate_models(const std::array<int, kSampleSize>& sample, std::vector<Model>* models) const {
+  void generate_models(const std::array<int, kSampleSize>& sample,
+                       std::vector<Model>* models) const {
     Solve(sample, &M::Minimal);
     for (const ThreeViewPose& pose : poses_) {
       if (pose.IsFinite()) models->push_back({pose, ThreeViewReprojectionError::Prepare(pose)});

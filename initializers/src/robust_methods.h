@@ -23,7 +23,9 @@ namespace internal {
 // Method policies. Minimal() and Refine() append three-view poses in the original frames from the
 // selected triplets' rays (aligned ones if kAligned); Refine() gets all inliers of a model.
 template <int (*kSolveAligned)(const Rays&, const Rays&, const Rays&, std::vector<ThreeViewPose>*)>
-void SolveGravityAware(const TripletData& data, const ViewRays& aligned, Workspace* work,
+void SolveGravityAware(const TripletData& data,
+                       const ViewRays& aligned,
+                       Workspace* work,
                        std::vector<ThreeViewPose>* poses) {
   kSolveAligned(aligned[0], aligned[1], aligned[2], &work->three_view);
   for (const ThreeViewPose& pose : work->three_view) {
@@ -33,50 +35,72 @@ void SolveGravityAware(const TripletData& data, const ViewRays& aligned, Workspa
 }
 
 template <int (*kSolvePair)(const Rays&, const Rays&, std::vector<CameraPose>*)>
-void SolveTwoViewPairs(const TripletData&, const ViewRays& raw, Workspace* work,
+void SolveTwoViewPairs(const TripletData&,
+                       const ViewRays& raw,
+                       Workspace* work,
                        std::vector<ThreeViewPose>* poses) {
   kSolvePair(raw[0], raw[1], &work->pair12);
   kSolvePair(raw[0], raw[2], &work->pair13);
   CombineTwoViewPairs(raw[0], raw[1], raw[2], work->pair12, work->pair13, poses);
 }
 
-inline void SolveLinear(const TripletData&, const ViewRays& raw, Workspace* work,
-                 std::vector<ThreeViewPose>* poses) {
+inline void SolveLinear(const TripletData&,
+                        const ViewRays& raw,
+                        Workspace* work,
+                        std::vector<ThreeViewPose>* poses) {
   SolveTrifocalLinear(raw[0], raw[1], raw[2], &work->three_view);
   poses->insert(poses->end(), work->three_view.begin(), work->three_view.end());
 }
 
 // The aligned-frame overloads, as plain function pointers.
-inline int Trifocal3pt(const Rays& x1, const Rays& x2, const Rays& x3, std::vector<ThreeViewPose>* out) {
+inline int Trifocal3pt(const Rays& x1,
+                       const Rays& x2,
+                       const Rays& x3,
+                       std::vector<ThreeViewPose>* out) {
   return SolveTrifocal3pt(x1, x2, x3, out);
 }
-inline int Trifocal3ptSextic(const Rays& x1, const Rays& x2, const Rays& x3,
-                      std::vector<ThreeViewPose>* out) {
+inline int Trifocal3ptSextic(const Rays& x1,
+                             const Rays& x2,
+                             const Rays& x3,
+                             std::vector<ThreeViewPose>* out) {
   return SolveTrifocal3ptSextic(x1, x2, x3, out);
 }
-inline int Trifocal4pt(const Rays& x1, const Rays& x2, const Rays& x3, std::vector<ThreeViewPose>* out) {
+inline int Trifocal4pt(const Rays& x1,
+                       const Rays& x2,
+                       const Rays& x3,
+                       std::vector<ThreeViewPose>* out) {
   return SolveTrifocal4pt(x1, x2, x3, out);
 }
 
-template <int kSize, bool kAlignedRays, SolveFunction kMinimal, int kMinRefine, SolveFunction kRefine>
+template <int kSize,
+          bool kAlignedRays,
+          SolveFunction kMinimal,
+          int kMinRefine,
+          SolveFunction kRefine>
 struct Method {
   static constexpr int kSampleSize = kSize;
   static constexpr bool kAligned = kAlignedRays;
   static constexpr int kMinTripletsToRefine = kMinRefine;
-  static void Minimal(const TripletData& d, const ViewRays& r, Workspace* w,
+  static void Minimal(const TripletData& d,
+                      const ViewRays& r,
+                      Workspace* w,
                       std::vector<ThreeViewPose>* p) {
     kMinimal(d, r, w, p);
   }
-  static void Refine(const TripletData& d, const ViewRays& r, Workspace* w,
+  static void Refine(const TripletData& d,
+                     const ViewRays& r,
+                     Workspace* w,
                      std::vector<ThreeViewPose>* p) {
     kRefine(d, r, w, p);
   }
 };
 
-using Method3pt = Method<3, true, SolveGravityAware<Trifocal3pt>, 4, SolveGravityAware<Trifocal4pt>>;
+using Method3pt =
+    Method<3, true, SolveGravityAware<Trifocal3pt>, 4, SolveGravityAware<Trifocal4pt>>;
 using Method3ptSextic =
     Method<3, true, SolveGravityAware<Trifocal3ptSextic>, 4, SolveGravityAware<Trifocal4pt>>;
-using Method4pt = Method<4, true, SolveGravityAware<Trifocal4pt>, 4, SolveGravityAware<Trifocal4pt>>;
+using Method4pt =
+    Method<4, true, SolveGravityAware<Trifocal4pt>, 4, SolveGravityAware<Trifocal4pt>>;
 using Method7ptLinear = Method<7, false, SolveLinear, 7, SolveLinear>;
 using Method5pt =
     Method<5, false, SolveTwoViewPairs<SolveEssential5pt>, 8, SolveTwoViewPairs<SolveEssential8pt>>;

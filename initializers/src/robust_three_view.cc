@@ -79,7 +79,8 @@ bool UsesGravity(InitialSolver solver) { return Info(solver).uses_gravity; }
 
 std::string InitialSolverNames() {
   std::string names;
-  for (const SolverInfo& info : kSolvers) names += (names.empty() ? "" : ", ") + std::string(info.name);
+  for (const SolverInfo& info : kSolvers)
+    names += (names.empty() ? "" : ", ") + std::string(info.name);
   return names;
 }
 
@@ -114,7 +115,8 @@ RobustThreeViewEstimate EstimateThreeViewPoseRobust(const ThreeViewObservations&
   const SolverInfo& info = Info(options.solver);
   const RunFunction run = max_tilt_correction_deg > 0.0 ? info.run_tilt_correcting : info.run;
   RobustThreeViewEstimate estimate = run(data, options.ransac);
-  if (estimate.success) internal::RejectWithoutParallax(observations, data, options.ransac.max_error, &estimate);
+  if (estimate.success)
+    internal::RejectWithoutParallax(observations, data, options.ransac.max_error, &estimate);
   return estimate;
 }
 

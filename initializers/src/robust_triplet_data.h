@@ -5,11 +5,10 @@
 // raw and gravity-aligned, the alignments and the common inlier error; and the solvers' reused
 // output storage.
 
+#include <Eigen/Core>
 #include <array>
 #include <cmath>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "trigrav/initializers/camera_pose.h"
 #include "trigrav/initializers/gravity.h"
@@ -22,8 +21,8 @@ namespace internal {
 using Rays = std::vector<Eigen::Vector3d>;
 using ViewRays = std::array<Rays, 3>;
 
-// What every method's estimator shares: the rays of each view, raw (K^-1 pixel) and gravity-aligned,
-// and the common inlier error.
+// What every method's estimator shares: the rays of each view, raw (K^-1 pixel) and
+// gravity-aligned, and the common inlier error.
 struct TripletData {
   TripletData(const ThreeViewObservations& observations, double max_tilt_correction_deg)
       : min_cos_tilt_correction(std::cos(max_tilt_correction_deg * M_PI / 180.0)),
@@ -50,10 +49,11 @@ struct Workspace {
   ViewRays corrected;  // tilt-corrected aligned rays (TiltCorrectingRefinement)
 };
 
-
 // A method's solver (robust_methods.h): appends three-view poses in the original frames computed
 // from the given rays of the selected triplets.
-using SolveFunction = void (*)(const TripletData&, const ViewRays&, Workspace*,
+using SolveFunction = void (*)(const TripletData&,
+                               const ViewRays&,
+                               Workspace*,
                                std::vector<ThreeViewPose>*);
 
 }  // namespace internal

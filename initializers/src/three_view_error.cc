@@ -4,7 +4,6 @@
 #include <limits>
 #include <stdexcept>
 
-
 namespace trigrav {
 
 bool TriangulateMidpoint(const std::array<Eigen::Vector3d, 3>& centers_in_ref,
@@ -13,8 +12,8 @@ bool TriangulateMidpoint(const std::array<Eigen::Vector3d, 3>& centers_in_ref,
   if (point_in_ref == nullptr) {
     throw std::invalid_argument("trigrav: TriangulateMidpoint: point_in_ref is null");
   }
-  // A = sum_k (I - d_k d_k^T) = 3 I - sum_k d_k d_k^T for unit d_k, b = sum_k (c_k - d_k (d_k . c_k));
-  // only the 6 distinct entries of the symmetric A are accumulated.
+  // A = sum_k (I - d_k d_k^T) = 3 I - sum_k d_k d_k^T for unit d_k, b = sum_k (c_k - d_k (d_k .
+  // c_k)); only the 6 distinct entries of the symmetric A are accumulated.
   double a00 = 0.0, a01 = 0.0, a02 = 0.0, a11 = 0.0, a12 = 0.0, a22 = 0.0;
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
   for (int k = 0; k < 3; ++k) {
@@ -42,10 +41,10 @@ bool TriangulateMidpoint(const std::array<Eigen::Vector3d, 3>& centers_in_ref,
   const double c11 = A(0, 0) * A(2, 2) - A(0, 2) * A(0, 2);
   const double c12 = A(0, 1) * A(0, 2) - A(0, 0) * A(1, 2);
   const double c22 = A(0, 0) * A(1, 1) - A(0, 1) * A(0, 1);
-  const Eigen::Vector3d point = Eigen::Vector3d(c00 * b[0] + c01 * b[1] + c02 * b[2],
-                                                c01 * b[0] + c11 * b[1] + c12 * b[2],
-                                                c02 * b[0] + c12 * b[1] + c22 * b[2]) /
-                                determinant;
+  const Eigen::Vector3d point =
+      Eigen::Vector3d(c00 * b[0] + c01 * b[1] + c02 * b[2], c01 * b[0] + c11 * b[1] + c12 * b[2],
+                      c02 * b[0] + c12 * b[1] + c22 * b[2]) /
+      determinant;
   if (!point.allFinite()) return false;
   *point_in_ref = point;
   return true;
@@ -65,7 +64,8 @@ ThreeViewReprojectionError::ThreeViewReprojectionError(const ThreeViewObservatio
 ThreeViewReprojectionError::PreparedPose ThreeViewReprojectionError::Prepare(
     const ThreeViewPose& pose) {
   PreparedPose prepared;
-  prepared.cam_from_ref = {Eigen::Matrix3d::Identity(), pose.cam2_from_cam1.R, pose.cam3_from_cam1.R};
+  prepared.cam_from_ref = {Eigen::Matrix3d::Identity(), pose.cam2_from_cam1.R,
+                           pose.cam3_from_cam1.R};
   prepared.center_in_ref = {Eigen::Vector3d::Zero(), pose.cam2_from_cam1.Center(),
                             pose.cam3_from_cam1.Center()};
   return prepared;
@@ -81,7 +81,8 @@ double ThreeViewReprojectionError::operator()(const PreparedPose& pose, std::siz
   if (!TriangulateMidpoint(pose.center_in_ref, directions, &point)) return kInfinity;
   double largest_squared = 0.0;
   for (int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d p = k == 0 ? point : pose.cam_from_ref[k] * (point - pose.center_in_ref[k]);
+    const Eigen::Vector3d p =
+        k == 0 ? point : pose.cam_from_ref[k] * (point - pose.center_in_ref[k]);
     if (!(p.z() > 0.0)) return kInfinity;
     largest_squared =
         std::max(largest_squared, (cameras_[k].Project(p) - pixels_[k][n]).squaredNorm());

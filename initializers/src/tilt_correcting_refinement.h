@@ -3,11 +3,10 @@
 
 // Local optimisation that corrects the relative tilt of IMU gravity (derivations.md section 2.4).
 
+#include <Eigen/Geometry>
 #include <array>
 #include <cstddef>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "robust_triplet_data.h"
 #include "trigrav/initializers/gravity.h"
@@ -30,7 +29,9 @@ template <typename M>
 struct TiltCorrectingRefinement : M {
   static_assert(M::kAligned, "only gravity-aware methods have a tilt to correct");
   static constexpr std::size_t kMinTripletsForTensor = 7;  // SolveTrifocalLinear's minimum
-  static void Refine(const TripletData& data, const ViewRays& aligned, Workspace* work,
+  static void Refine(const TripletData& data,
+                     const ViewRays& aligned,
+                     Workspace* work,
                      std::vector<ThreeViewPose>* poses) {
     std::array<Eigen::Matrix3d, 3> alignment = data.alignment;
     std::array<const Rays*, 3> rays = {&aligned[0], &aligned[1], &aligned[2]};

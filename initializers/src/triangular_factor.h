@@ -5,11 +5,10 @@
 #ifndef TRIGRAV_INITIALIZERS_SRC_TRIANGULAR_FACTOR_H_
 #define TRIGRAV_INITIALIZERS_SRC_TRIANGULAR_FACTOR_H_
 
-#include <algorithm>
-#include <cstddef>
-
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <algorithm>
+#include <cstddef>
 
 namespace trigrav {
 namespace internal {

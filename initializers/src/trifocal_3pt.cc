@@ -1,10 +1,9 @@
 #include "trigrav/initializers/trifocal_3pt.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
-
-#include <Eigen/Geometry>
 
 #include "gravity_wrapper.h"
 #include "input_checks.h"
@@ -53,9 +52,10 @@ constexpr int kQuarticNewtonSteps = 6;
 // Decoupled solver: a complex pair of quartic roots with |Im t| below this also gives a candidate,
 // at its real part (about where the epipolar constraints of the pair come closest to consistent).
 // Noise turns near-double real roots, often the true one among them, into such pairs. On the
-// synthetic scenes of derivations.md section 8.5 at 1 px this cuts the scenes without any candidate from 5.3 % to 0.9 % and the median
-// rotation error of the best-ranked candidate from 1.15 to 0.95 deg, for 0.2 more candidates per
-// call noise-free (0.6 at 1 px). Exact roots are unaffected. trigrav's own addition.
+// synthetic scenes of derivations.md section 8.5 at 1 px this cuts the scenes without any candidate
+// from 5.3 % to 0.9 % and the median rotation error of the best-ranked candidate from 1.15 to 0.95
+// deg, for 0.2 more candidates per call noise-free (0.6 at 1 px). Exact roots are unaffected.
+// trigrav's own addition.
 constexpr double kMaxImaginaryPart = 0.1;
 
 // Sorts the first `count` entries of a small array by key, ascending (insertion sort, no heap).
@@ -125,8 +125,8 @@ struct PairRoot {
 
 // det[m_1; m_2; m_3] at 5 equally spaced yaws, m_n(theta) = (R_y(theta) x1_n) x xk_n = cos P_n +
 // sin Q_n + S_n, is a trigonometric polynomial of degree 2 (the degree-6 polynomial in tan(theta/2)
-// has the factor 1 + tan^2, derivations.md section 5.5), D = a0 + a1 cos + b1 sin + a2 cos 2theta + b2 sin 2theta; a
-// 5-point DFT gives its coefficients exactly.
+// has the factor 1 + tan^2, derivations.md section 5.5), D = a0 + a1 cos + b1 sin + a2 cos 2theta +
+// b2 sin 2theta; a 5-point DFT gives its coefficients exactly.
 struct TrigQuadratic {
   double a0 = 0.0, a1 = 0.0, b1 = 0.0, a2 = 0.0, b2 = 0.0;
   // Value at theta_0 + pi, the leading coefficient of the quartic in tan((theta - theta_0)/2).
@@ -238,7 +238,9 @@ int SolveUprightPair(const Rays& x1, const Rays& xk, std::array<PairRoot, 4>* ro
   return count;
 }
 
-int SolveDecoupledAligned(const Rays& x1, const Rays& x2, const Rays& x3,
+int SolveDecoupledAligned(const Rays& x1,
+                          const Rays& x2,
+                          const Rays& x3,
                           std::vector<ThreeViewPose>* solutions) {
   std::array<PairRoot, 4> roots2, roots3;
   const int count2 = SolveUprightPair(x1, x2, &roots2);
@@ -262,7 +264,8 @@ int SolveDecoupledAligned(const Rays& x1, const Rays& x2, const Rays& x3,
       candidates[count++] = {residual, kappa, i2, i3};
     }
   }
-  SortByKey(count, [](const Candidate& c) { return c.residual; }, &candidates);
+  SortByKey(
+      count, [](const Candidate& c) { return c.residual; }, &candidates);
   int written = 0;
   for (int i = 0; i < count; ++i) {
     const PairRoot& root2 = roots2[candidates[i].i2];
@@ -307,7 +310,8 @@ double LargestSingularValue(const Eigen::Matrix<double, 6, 6>& R) {
   return std::sqrt(sigma_squared);
 }
 
-// The two cores C_12 and C_13 as polynomials in t = tan((theta_2 - theta_0)/2) (derivations.md sections 5.2-5.4).
+// The two cores C_12 and C_13 as polynomials in t = tan((theta_2 - theta_0)/2) (derivations.md
+// sections 5.2-5.4).
 class SexticSystem {
  public:
   SexticSystem(const Rays& x1, const Rays& x2, const Rays& x3) {
@@ -352,14 +356,15 @@ class SexticSystem {
     return cross;
   }
 
-  // cx^2 + cy^2 - cz^2 (degree 8) divided by its exact factor 1 + t^2: the sextic of derivations.md section 5.4.
+  // cx^2 + cy^2 - cz^2 (degree 8) divided by its exact factor 1 + t^2: the sextic of derivations.md
+  // section 5.4.
   std::array<double, 7> Sextic(const Offset& offset) const {
     const std::array<Eigen::Vector3d, 5> cross = Cross(offset);
     std::array<double, 9> g{};
     for (int i = 0; i < 5; ++i) {
       for (int j = 0; j < 5; ++j) {
-        g[i + j] += cross[i].x() * cross[j].x() + cross[i].y() * cross[j].y() -
-                    cross[i].z() * cross[j].z();
+        g[i + j] +=
+            cross[i].x() * cross[j].x() + cross[i].y() * cross[j].y() - cross[i].z() * cross[j].z();
       }
     }
     std::array<double, 7> h{};
@@ -375,7 +380,9 @@ class SexticSystem {
   Eigen::Vector3d view2_[2][2], view3_[2][2];
 };
 
-int SolveSexticAligned(const Rays& x1, const Rays& x2, const Rays& x3,
+int SolveSexticAligned(const Rays& x1,
+                       const Rays& x2,
+                       const Rays& x3,
                        std::vector<ThreeViewPose>* solutions) {
   const SexticSystem system(x1, x2, x3);
   std::array<double, 7> sextic = system.Sextic(kOffsets[0]);
@@ -416,7 +423,8 @@ int SolveSexticAligned(const Rays& x1, const Rays& x2, const Rays& x3,
     const double sign = direction.z() > 0.0 ? 1.0 : -1.0;
     const Yaw yaw3 = {sign * direction.x() / horizontal, sign * direction.y() / horizontal};
 
-    // Centres: null vector of the 12x6 translation system with the yaws fixed (derivations.md section 3.4).
+    // Centres: null vector of the 12x6 translation system with the yaws fixed (derivations.md
+    // section 3.4).
     const Eigen::Matrix3d R2 = yaw2.Matrix(), R3 = yaw3.Matrix();
     Eigen::Matrix<double, 12, 6> F;
     for (std::size_t n = 0; n < kNumTriplets; ++n) {
@@ -439,14 +447,17 @@ int SolveSexticAligned(const Rays& x1, const Rays& x2, const Rays& x3,
     candidate.score = score;
     ++count;
   }
-  SortByKey(count, [](const Candidate& c) { return c.score; }, &candidates);
+  SortByKey(
+      count, [](const Candidate& c) { return c.score; }, &candidates);
   for (int i = 0; i < count; ++i) solutions->push_back(candidates[i].pose);
   return count;
 }
 
 }  // namespace
 
-int SolveTrifocal3pt(const Rays& x1, const Rays& x2, const Rays& x3,
+int SolveTrifocal3pt(const Rays& x1,
+                     const Rays& x2,
+                     const Rays& x3,
                      std::vector<ThreeViewPose>* solutions) {
   internal::CheckTriplets("SolveTrifocal3pt", kNumTriplets, kNumTriplets, x1, x2, x3, solutions);
   solutions->clear();
@@ -470,7 +481,9 @@ int SolveTrifocal3pt(const Rays& x1,
       });
 }
 
-int SolveTrifocal3ptSextic(const Rays& x1, const Rays& x2, const Rays& x3,
+int SolveTrifocal3ptSextic(const Rays& x1,
+                           const Rays& x2,
+                           const Rays& x3,
                            std::vector<ThreeViewPose>* solutions) {
   internal::CheckTriplets("SolveTrifocal3ptSextic", kNumTriplets, kNumTriplets, x1, x2, x3,
                           solutions);
@@ -479,7 +492,9 @@ int SolveTrifocal3ptSextic(const Rays& x1, const Rays& x2, const Rays& x3,
   return SolveSexticAligned(x1, x2, x3, solutions);
 }
 
-int SolveTrifocal3ptSextic(const Rays& x1, const Rays& x2, const Rays& x3,
+int SolveTrifocal3ptSextic(const Rays& x1,
+                           const Rays& x2,
+                           const Rays& x3,
                            const Eigen::Vector3d& gravity_in_cam1,
                            const Eigen::Vector3d& gravity_in_cam2,
                            const Eigen::Vector3d& gravity_in_cam3,

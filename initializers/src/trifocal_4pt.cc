@@ -1,13 +1,12 @@
 #include "trigrav/initializers/trifocal_4pt.h"
 
+#include <Eigen/Cholesky>
+#include <Eigen/QR>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
-
-#include <Eigen/Cholesky>
-#include <Eigen/QR>
 
 #include "gravity_wrapper.h"
 #include "input_checks.h"
@@ -25,23 +24,25 @@ using TensorSlices = std::array<Eigen::Matrix3d, 3>;
 
 constexpr int kMinTriplets = 4;
 
-// Where Q_1..Q_17 sit in the aligned trifocal tensor (paper eqs c2-c4, checked in derivations.md section 3):
-// entry T_slice(row, col) = sign * Q_q, all indices 0-based. Six entries of T are always zero.
+// Where Q_1..Q_17 sit in the aligned trifocal tensor (paper eqs c2-c4, checked in derivations.md
+// section 3): entry T_slice(row, col) = sign * Q_q, all indices 0-based. Six entries of T are
+// always zero.
 struct TensorEntry {
   int q, slice, row, col;
   double sign;
 };
 constexpr std::array<TensorEntry, 21> kTensorEntries = {{
-    {0, 0, 0, 0, 1},  {1, 0, 0, 1, 1},  {1, 2, 2, 1, 1},   {2, 0, 0, 2, 1},  {3, 0, 1, 0, 1},
-    {3, 2, 1, 2, 1},  {4, 0, 1, 2, 1},  {4, 2, 1, 0, -1},  {5, 0, 2, 0, 1},  {6, 0, 2, 1, 1},
-    {6, 2, 0, 1, -1}, {7, 0, 2, 2, 1},  {8, 1, 0, 1, 1},   {9, 1, 1, 0, 1},  {10, 1, 1, 1, 1},
-    {11, 1, 1, 2, 1}, {12, 1, 2, 1, 1}, {13, 2, 0, 0, 1},  {14, 2, 0, 2, 1}, {15, 2, 2, 0, 1},
+    {0, 0, 0, 0, 1},  {1, 0, 0, 1, 1},  {1, 2, 2, 1, 1},  {2, 0, 0, 2, 1},  {3, 0, 1, 0, 1},
+    {3, 2, 1, 2, 1},  {4, 0, 1, 2, 1},  {4, 2, 1, 0, -1}, {5, 0, 2, 0, 1},  {6, 0, 2, 1, 1},
+    {6, 2, 0, 1, -1}, {7, 0, 2, 2, 1},  {8, 1, 0, 1, 1},  {9, 1, 1, 0, 1},  {10, 1, 1, 1, 1},
+    {11, 1, 1, 2, 1}, {12, 1, 2, 1, 1}, {13, 2, 0, 0, 1}, {14, 2, 0, 2, 1}, {15, 2, 2, 0, 1},
     {16, 2, 2, 2, 1},
 }};
 
-// The 4 incidence rows of one triplet in q (derivations.md section 3): p_a^T (sum_i x1_i T_i) r_b = 0 for
-// orthonormal bases (p_a) of x2^perp and (r_b) of x3^perp, equivalent to eq. c6.
-Eigen::Matrix<double, 4, 17> IncidenceRows(const Eigen::Vector3d& x1, const Eigen::Vector3d& x2,
+// The 4 incidence rows of one triplet in q (derivations.md section 3): p_a^T (sum_i x1_i T_i) r_b =
+// 0 for orthonormal bases (p_a) of x2^perp and (r_b) of x3^perp, equivalent to eq. c6.
+Eigen::Matrix<double, 4, 17> IncidenceRows(const Eigen::Vector3d& x1,
+                                           const Eigen::Vector3d& x2,
                                            const Eigen::Vector3d& x3) {
   Eigen::Vector3d p[2], r[2];
   internal::PerpendicularBasis(x2, &p[0], &p[1]);
@@ -68,27 +69,28 @@ TensorSlices TensorFromQ(const Vector17d& q) {
   return T;
 }
 
-// q = E a for the constrained tensor with epipoles e' = e, e'' = f (eqs f2-f6, derivations.md section 4.3):
-// the 26 non-zeros of the 17 x 6 matrix E, as (row of q, column of a, value).
+// q = E a for the constrained tensor with epipoles e' = e, e'' = f (eqs f2-f6, derivations.md
+// section 4.3): the 26 non-zeros of the 17 x 6 matrix E, as (row of q, column of a, value).
 struct BasisEntry {
   int q, a;
   double value;
 };
-std::array<BasisEntry, 26> ConstrainedTensorBasis(const Eigen::Vector3d& e, const Eigen::Vector3d& f) {
+std::array<BasisEntry, 26> ConstrainedTensorBasis(const Eigen::Vector3d& e,
+                                                  const Eigen::Vector3d& f) {
   return {{
       {0, 0, f[0]},   {0, 3, -e[0]},   // Q1  = f1 a1 - e1 a4
-      {1, 0, f[1]},                     // Q2  = f2 a1
+      {1, 0, f[1]},                    // Q2  = f2 a1
       {2, 0, f[2]},   {2, 4, e[0]},    // Q3  = f3 a1 + e1 a5
-      {3, 3, -e[1]},                    // Q4  = -e2 a4
-      {4, 4, e[1]},                     // Q5  = e2 a5
+      {3, 3, -e[1]},                   // Q4  = -e2 a4
+      {4, 4, e[1]},                    // Q5  = e2 a5
       {5, 1, -f[0]},  {5, 3, -e[2]},   // Q6  = -f1 a2 - e3 a4
-      {6, 1, -f[1]},                    // Q7  = -f2 a2
+      {6, 1, -f[1]},                   // Q7  = -f2 a2
       {7, 1, -f[2]},  {7, 4, e[2]},    // Q8  = -f3 a2 + e3 a5
-      {8, 5, -e[0]},                    // Q9  = -e1 a6
-      {9, 2, f[0]},                     // Q10 = f1 a3
+      {8, 5, -e[0]},                   // Q9  = -e1 a6
+      {9, 2, f[0]},                    // Q10 = f1 a3
       {10, 2, f[1]},  {10, 5, -e[1]},  // Q11 = f2 a3 - e2 a6
-      {11, 2, f[2]},                    // Q12 = f3 a3
-      {12, 5, -e[2]},                   // Q13 = -e3 a6
+      {11, 2, f[2]},                   // Q12 = f3 a3
+      {12, 5, -e[2]},                  // Q13 = -e3 a6
       {13, 1, f[0]},  {13, 4, -e[0]},  // Q14 = f1 a2 - e1 a5
       {14, 1, f[2]},  {14, 3, -e[0]},  // Q15 = f3 a2 - e1 a4
       {15, 0, f[0]},  {15, 4, -e[2]},  // Q16 = f1 a1 - e3 a5
@@ -102,7 +104,8 @@ struct AlignedEstimate {
   Eigen::Vector3d center2 = Eigen::Vector3d::Zero(), center3 = Eigen::Vector3d::Zero();
 };
 
-// Centres from q given the yaws: R2 c2 = (Q9, ty2, Q13), R3 c3 = (-Q10, ty3, -Q12) (derivations.md section 3).
+// Centres from q given the yaws: R2 c2 = (Q9, ty2, Q13), R3 c3 = (-Q10, ty3, -Q12) (derivations.md
+// section 3).
 void CentersFromQ(const Vector17d& q, double ty2, double ty3, AlignedEstimate* estimate) {
   estimate->center2 =
       RotationAboutY(estimate->theta2).transpose() * Eigen::Vector3d(q[8], ty2, q[12]);
@@ -110,12 +113,14 @@ void CentersFromQ(const Vector17d& q, double ty2, double ty3, AlignedEstimate* e
       RotationAboutY(estimate->theta3).transpose() * Eigen::Vector3d(-q[9], ty3, -q[11]);
 }
 
-// Constraint enforcement for given epipoles (eqs f2-f7) and the pose read from a (derivations.md section 4.3 step
-// 4). M is the incidence matrix A itself (minimal case) or its triangular factor R_A (|A y| = |R_A y|).
-// False if the basis E is degenerate.
+// Constraint enforcement for given epipoles (eqs f2-f7) and the pose read from a (derivations.md
+// section 4.3 step 4). M is the incidence matrix A itself (minimal case) or its triangular factor
+// R_A (|A y| = |R_A y|). False if the basis E is degenerate.
 template <typename IncidenceMatrix>
-bool EnforceConstraints(const IncidenceMatrix& M, const Eigen::Vector3d& epipole2,
-                        const Eigen::Vector3d& epipole3, AlignedEstimate* estimate) {
+bool EnforceConstraints(const IncidenceMatrix& M,
+                        const Eigen::Vector3d& epipole2,
+                        const Eigen::Vector3d& epipole3,
+                        AlignedEstimate* estimate) {
   // min |M E a| s.t. |E a| = 1 (eq. f7). With E^T E = R_E^T R_E (Cholesky; E is well conditioned
   // unless an epipole degenerates) and b = R_E a: b = smallest right singular vector of M E R_E^-1,
   // then a = R_E^-1 b. E is used through its non-zeros only.
@@ -154,13 +159,13 @@ bool EnforceConstraints(const IncidenceMatrix& M, const Eigen::Vector3d& epipole
 bool EstimateLeastSquares(const Vector17d& q, AlignedEstimate* estimate) {
   Eigen::Matrix<double, 8, 4> M;
   Eigen::Matrix<double, 8, 1> rhs;
-  M << q[9], 0, q[8], 0,        //
-      q[11], 0, 0, -q[8],       //
-      0, -q[9], q[12], 0,       //
-      0, -q[11], 0, -q[12],     //
-      0, q[9], 0, q[8],         //
-      0, q[11], q[8], 0,        //
-      q[9], 0, 0, q[12],        //
+  M << q[9], 0, q[8], 0,     //
+      q[11], 0, 0, -q[8],    //
+      0, -q[9], q[12], 0,    //
+      0, -q[11], 0, -q[12],  //
+      0, q[9], 0, q[8],      //
+      0, q[11], q[8], 0,     //
+      q[9], 0, 0, q[12],     //
       q[11], 0, q[12], 0;
   rhs << q[0], q[2], q[5], q[7], q[13], q[14], q[15], q[16];
   const Eigen::ColPivHouseholderQR<Eigen::Matrix<double, 8, 4>> qr(M);
@@ -180,7 +185,8 @@ bool EstimateLeastSquares(const Vector17d& q, AlignedEstimate* estimate) {
   return true;
 }
 
-// The paper's closed forms, eqs c8-c11 (exact, but singular when Q10 Q13 = Q9 Q12, Q9 = 0 or Q13 = 0).
+// The paper's closed forms, eqs c8-c11 (exact, but singular when Q10 Q13 = Q9 Q12, Q9 = 0 or Q13 =
+// 0).
 bool EstimatePaperClosedForm(const Vector17d& q, AlignedEstimate* estimate) {
   const double denominator = q[9] * q[12] - q[8] * q[11];
   const double s2 = (q[7] * q[8] + q[12] * q[13]) / denominator;
@@ -195,9 +201,12 @@ bool EstimatePaperClosedForm(const Vector17d& q, AlignedEstimate* estimate) {
   return std::isfinite(estimate->theta2) && std::isfinite(estimate->theta3);
 }
 
-// (c2; c3) = null vector of the stacked translation rows with the yaws fixed (derivations.md section 3.4).
-void ResolveCenters(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
-                    const std::vector<Eigen::Vector3d>& x3, AlignedEstimate* estimate) {
+// (c2; c3) = null vector of the stacked translation rows with the yaws fixed (derivations.md
+// section 3.4).
+void ResolveCenters(const std::vector<Eigen::Vector3d>& x1,
+                    const std::vector<Eigen::Vector3d>& x2,
+                    const std::vector<Eigen::Vector3d>& x3,
+                    AlignedEstimate* estimate) {
   const Eigen::Matrix3d R2 = RotationAboutY(estimate->theta2);
   const Eigen::Matrix3d R3 = RotationAboutY(estimate->theta3);
   const Vector6d centers = internal::SmallestRightSingularVectorOfTriangular<6>(
@@ -205,22 +214,26 @@ void ResolveCenters(const std::vector<Eigen::Vector3d>& x1, const std::vector<Ei
         return internal::TranslationRows(x1[n], x2[n], x3[n], R2, R3);
       }));
   // Keep the sign of the previous centres so the cheirality vote starts from a consistent guess.
-  const double sign = centers.head<3>().dot(estimate->center2) + centers.tail<3>().dot(estimate->center3);
+  const double sign =
+      centers.head<3>().dot(estimate->center2) + centers.tail<3>().dot(estimate->center3);
   estimate->center2 = (sign < 0.0 ? -1.0 : 1.0) * centers.head<3>();
   estimate->center3 = (sign < 0.0 ? -1.0 : 1.0) * centers.tail<3>();
 }
 
 // Rows = 16 for the minimal case (fixed size, no heap allocation) or Eigen::Dynamic.
 template <int Rows>
-int SolveAligned(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
-                 const std::vector<Eigen::Vector3d>& x3, const Trifocal4ptOptions& options,
+int SolveAligned(const std::vector<Eigen::Vector3d>& x1,
+                 const std::vector<Eigen::Vector3d>& x2,
+                 const std::vector<Eigen::Vector3d>& x3,
+                 const Trifocal4ptOptions& options,
                  std::vector<ThreeViewPose>* solutions) {
   // q: exact null vector of the 16 x 17 system in the minimal case, least-squares otherwise; M is
   // the system itself or its triangular factor (|A y| = |R_A y|), as enforcement needs it.
   Vector17d q;
   Eigen::Matrix<double, Rows == 16 ? 16 : 17, 17> M;
   if constexpr (Rows == 16) {
-    for (std::size_t n = 0; n < 4; ++n) M.template middleRows<4>(4 * n) = IncidenceRows(x1[n], x2[n], x3[n]);
+    for (std::size_t n = 0; n < 4; ++n)
+      M.template middleRows<4>(4 * n) = IncidenceRows(x1[n], x2[n], x3[n]);
     if (!M.allFinite()) return 0;
     q = internal::NullVectorOfWideMatrix<17>(M);
   } else {
@@ -262,8 +275,8 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen
   }
 
   for (int iteration = 0; iteration < options.polish_iterations; ++iteration) {
-    internal::RefineYawsAndCenters(x1, x2, x3, &estimate.theta2, &estimate.theta3, &estimate.center2,
-                                   &estimate.center3);
+    internal::RefineYawsAndCenters(x1, x2, x3, &estimate.theta2, &estimate.theta3,
+                                   &estimate.center2, &estimate.center3);
   }
 
   ThreeViewPose pose;
@@ -289,8 +302,10 @@ void Trifocal4ptOptions::Check() const {
   require(polish_iterations >= 0, "polish_iterations must be >= 0");
 }
 
-int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
-                     const std::vector<Eigen::Vector3d>& x3, const Trifocal4ptOptions& options,
+int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1,
+                     const std::vector<Eigen::Vector3d>& x2,
+                     const std::vector<Eigen::Vector3d>& x3,
+                     const Trifocal4ptOptions& options,
                      std::vector<ThreeViewPose>* solutions) {
   options.Check();
   internal::CheckTriplets("SolveTrifocal4pt", kMinTriplets, std::numeric_limits<std::size_t>::max(),
@@ -300,15 +315,21 @@ int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<E
   return SolveAligned<Eigen::Dynamic>(x1, x2, x3, options, solutions);
 }
 
-int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
-                     const std::vector<Eigen::Vector3d>& x3, std::vector<ThreeViewPose>* solutions) {
+int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1,
+                     const std::vector<Eigen::Vector3d>& x2,
+                     const std::vector<Eigen::Vector3d>& x3,
+                     std::vector<ThreeViewPose>* solutions) {
   return SolveTrifocal4pt(x1, x2, x3, Trifocal4ptOptions(), solutions);
 }
 
-int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
-                     const std::vector<Eigen::Vector3d>& x3, const Eigen::Vector3d& gravity_in_cam1,
-                     const Eigen::Vector3d& gravity_in_cam2, const Eigen::Vector3d& gravity_in_cam3,
-                     const Trifocal4ptOptions& options, std::vector<ThreeViewPose>* solutions) {
+int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1,
+                     const std::vector<Eigen::Vector3d>& x2,
+                     const std::vector<Eigen::Vector3d>& x3,
+                     const Eigen::Vector3d& gravity_in_cam1,
+                     const Eigen::Vector3d& gravity_in_cam2,
+                     const Eigen::Vector3d& gravity_in_cam3,
+                     const Trifocal4ptOptions& options,
+                     std::vector<ThreeViewPose>* solutions) {
   return internal::SolveWithGravity(
       "SolveTrifocal4pt", x1, x2, x3, gravity_in_cam1, gravity_in_cam2, gravity_in_cam3, solutions,
       [&options](const std::vector<Eigen::Vector3d>& y1, const std::vector<Eigen::Vector3d>& y2,
@@ -317,9 +338,12 @@ int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<E
       });
 }
 
-int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
-                     const std::vector<Eigen::Vector3d>& x3, const Eigen::Vector3d& gravity_in_cam1,
-                     const Eigen::Vector3d& gravity_in_cam2, const Eigen::Vector3d& gravity_in_cam3,
+int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1,
+                     const std::vector<Eigen::Vector3d>& x2,
+                     const std::vector<Eigen::Vector3d>& x3,
+                     const Eigen::Vector3d& gravity_in_cam1,
+                     const Eigen::Vector3d& gravity_in_cam2,
+                     const Eigen::Vector3d& gravity_in_cam3,
                      std::vector<ThreeViewPose>* solutions) {
   return SolveTrifocal4pt(x1, x2, x3, gravity_in_cam1, gravity_in_cam2, gravity_in_cam3,
                           Trifocal4ptOptions(), solutions);

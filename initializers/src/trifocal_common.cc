@@ -1,11 +1,10 @@
 // The pieces the trifocal solvers share (trifocal_common.h).
 #include "trifocal_common.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-
-#include <Eigen/Cholesky>
 
 #include "null_space.h"
 #include "trigrav/initializers/gravity.h"
@@ -14,8 +13,10 @@
 namespace trigrav {
 namespace internal {
 
-Eigen::Matrix<double, 4, 6> TranslationRows(const Eigen::Vector3d& x1, const Eigen::Vector3d& x2,
-                                            const Eigen::Vector3d& x3, const Eigen::Matrix3d& R2,
+Eigen::Matrix<double, 4, 6> TranslationRows(const Eigen::Vector3d& x1,
+                                            const Eigen::Vector3d& x2,
+                                            const Eigen::Vector3d& x3,
+                                            const Eigen::Matrix3d& R2,
                                             const Eigen::Matrix3d& R3) {
   Eigen::Vector3d p[2], r[2];
   PerpendicularBasis(x2, &p[0], &p[1]);
@@ -67,8 +68,11 @@ CameraPose PoseFromYawAndCenter(double theta, const Eigen::Vector3d& center) {
 
 void RefineYawsAndCenters(const std::vector<Eigen::Vector3d>& x1,
                           const std::vector<Eigen::Vector3d>& x2,
-                          const std::vector<Eigen::Vector3d>& x3, double* theta2, double* theta3,
-                          Eigen::Vector3d* center2, Eigen::Vector3d* center3) {
+                          const std::vector<Eigen::Vector3d>& x3,
+                          double* theta2,
+                          double* theta3,
+                          Eigen::Vector3d* center2,
+                          Eigen::Vector3d* center3) {
   const Eigen::Matrix3d R2 = RotationAboutY(*theta2), dR2 = RotationAboutYDerivative(*theta2);
   const Eigen::Matrix3d R3 = RotationAboutY(*theta3), dR3 = RotationAboutYDerivative(*theta3);
   Eigen::Matrix<double, 6, 1> centers;
@@ -86,7 +90,8 @@ void RefineYawsAndCenters(const std::vector<Eigen::Vector3d>& x1,
     PerpendicularBasis(x2[n], &p[0], &p[1]);
     PerpendicularBasis(x3[n], &r[0], &r[1]);
     // Row (a, b): (z . r_b) (p_a x x2) . R2 c2 + (p_a . u) (r_b x x3) . R3 c3, u = x2 x R2 x1,
-    // z = R3 x1 x x3 (derivations.md section 3.4); u and z carry the cross-dependence on the other yaw.
+    // z = R3 x1 x x3 (derivations.md section 3.4); u and z carry the cross-dependence on the other
+    // yaw.
     const Eigen::Vector3d u = x2[n].cross(R2 * x1[n]), du = x2[n].cross(dR2 * x1[n]);
     const Eigen::Vector3d z = (R3 * x1[n]).cross(x3[n]), dz = (dR3 * x1[n]).cross(x3[n]);
     // Everything that depends on a alone or on b alone, then the 4 rows from products of the two.
@@ -134,8 +139,11 @@ void RefineYawsAndCenters(const std::vector<Eigen::Vector3d>& x1,
 
 bool OrientScaleAndMakePose(const std::vector<Eigen::Vector3d>& x1,
                             const std::vector<Eigen::Vector3d>& x2,
-                            const std::vector<Eigen::Vector3d>& x3, double theta2,
-                            Eigen::Vector3d center2, double theta3, Eigen::Vector3d center3,
+                            const std::vector<Eigen::Vector3d>& x3,
+                            double theta2,
+                            Eigen::Vector3d center2,
+                            double theta3,
+                            Eigen::Vector3d center3,
                             ThreeViewPose* pose) {
   if (!std::isfinite(theta2) || !std::isfinite(theta3) || !center2.allFinite() ||
       !center3.allFinite()) {
@@ -145,8 +153,8 @@ bool OrientScaleAndMakePose(const std::vector<Eigen::Vector3d>& x1,
   const Eigen::Matrix3d R3 = RotationAboutY(theta3);
   int votes = 0;
   for (std::size_t n = 0; n < x1.size(); ++n) {
-    for (const double depth : {ViewOneDepth(x1[n], x2[n], R2, center2),
-                               ViewOneDepth(x1[n], x3[n], R3, center3)}) {
+    for (const double depth :
+         {ViewOneDepth(x1[n], x2[n], R2, center2), ViewOneDepth(x1[n], x3[n], R3, center3)}) {
       votes += (depth > 0.0) - (depth < 0.0);
     }
   }

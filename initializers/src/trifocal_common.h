@@ -1,15 +1,14 @@
-// Internal pieces the trifocal solvers share: the trifocal incidence equations of an aligned triplet
-// (as linear functions of the centres), the epipoles of a tensor, the joint Gauss-Newton polish of
-// yaws and centres, and the final orientation and scaling into a ThreeViewPose. Not installed; not
-// part of the public API.
+// Internal pieces the trifocal solvers share: the trifocal incidence equations of an aligned
+// triplet (as linear functions of the centres), the epipoles of a tensor, the joint Gauss-Newton
+// polish of yaws and centres, and the final orientation and scaling into a ThreeViewPose. Not
+// installed; not part of the public API.
 #ifndef TRIGRAV_INITIALIZERS_SRC_TRIFOCAL_COMMON_H_
 #define TRIGRAV_INITIALIZERS_SRC_TRIFOCAL_COMMON_H_
 
-#include <array>
-#include <vector>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
+#include <vector>
 
 #include "trigrav/initializers/camera_pose.h"
 
@@ -24,9 +23,9 @@ inline void PerpendicularBasis(const Eigen::Vector3d& x, Eigen::Vector3d* p1, Ei
 }
 
 // The 4 trifocal incidence equations of one aligned triplet as linear functions of the centres
-// (c_2; c_3) for fixed yaws (derivations.md section 3.4): with u = x2 x R2 x1, z = R3 x1 x x3 and (p_a), (r_b)
-// bases of x2^perp and x3^perp, row (a, b) = [ (z . r_b) (p_a x x2)^T R2 , (p_a . u) (r_b x x3)^T
-// R3 ].
+// (c_2; c_3) for fixed yaws (derivations.md section 3.4): with u = x2 x R2 x1, z = R3 x1 x x3 and
+// (p_a), (r_b) bases of x2^perp and x3^perp, row (a, b) = [ (z . r_b) (p_a x x2)^T R2 , (p_a . u)
+// (r_b x x3)^T R3 ].
 Eigen::Matrix<double, 4, 6> TranslationRows(const Eigen::Vector3d& x1,
                                             const Eigen::Vector3d& x2,
                                             const Eigen::Vector3d& x3,

@@ -1,12 +1,11 @@
 #include "trigrav/initializers/trifocal_linear.h"
 
+#include <Eigen/Core>
+#include <Eigen/LU>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
-
-#include <Eigen/Core>
-#include <Eigen/LU>
 
 #include "essential_decomposition.h"
 #include "input_checks.h"
@@ -166,9 +165,9 @@ struct Candidate {
   double residual = std::numeric_limits<double>::infinity();
 };
 
-// Centres for fixed rotations: least-squares null vector of the incidence rows of derivations.md section 3.4
-// (header step 5), with the sign that puts the most triplets in front of all three cameras
-// (step 6).
+// Centres for fixed rotations: least-squares null vector of the incidence rows of derivations.md
+// section 3.4 (header step 5), with the sign that puts the most triplets in front of all three
+// cameras (step 6).
 template <int Rows>
 Candidate SolveCenters(const std::vector<Eigen::Vector3d>& x1,
                        const std::vector<Eigen::Vector3d>& x2,

@@ -4,19 +4,18 @@
 #ifndef TRIGRAV_INITIALIZERS_SRC_TWO_VIEW_GEOMETRY_H_
 #define TRIGRAV_INITIALIZERS_SRC_TWO_VIEW_GEOMETRY_H_
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstddef>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 namespace trigrav {
 namespace internal {
 
 // View-1 depth of the point seen along x1 and xk, from the pair (1, k) alone, with
-// xk ~ R (X - center): lambda = ((xk x R center) . (xk x R x1)) / |xk x R x1|^2 (derivations.md section 4.6).
-// NaN-free: returns 0 when the rays are parallel after rotation.
+// xk ~ R (X - center): lambda = ((xk x R center) . (xk x R x1)) / |xk x R x1|^2 (derivations.md
+// section 4.6). NaN-free: returns 0 when the rays are parallel after rotation.
 inline double ViewOneDepth(const Eigen::Vector3d& x1,
                            const Eigen::Vector3d& xk,
                            const Eigen::Matrix3d& R,

@@ -14,7 +14,8 @@ void CombineTwoViewPairs(const std::vector<Eigen::Vector3d>& x1,
                          const std::vector<Eigen::Vector3d>& x2,
                          const std::vector<Eigen::Vector3d>& x3,
                          const std::vector<CameraPose>& pair12,
-                         const std::vector<CameraPose>& pair13, std::vector<ThreeViewPose>* poses,
+                         const std::vector<CameraPose>& pair13,
+                         std::vector<ThreeViewPose>* poses,
                          std::vector<double>* residuals) {
   constexpr const char* kName = "CombineTwoViewPairs";
   if (poses == nullptr) throw std::invalid_argument("trigrav: CombineTwoViewPairs: poses is null");

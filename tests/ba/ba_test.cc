@@ -20,12 +20,12 @@
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/ba/refine_three_view_pose.h"
 #include "trigrav/ba/three_view_bundle_adjustment.h"
-#include "trigrav/factors/angle_manifold.h"
-#include "trigrav/factors/reprojection_factors.h"
-#include "trigrav/initializers/gravity.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"
+#include "trigrav/factors/angle_manifold.h"
+#include "trigrav/factors/reprojection_factors.h"
+#include "trigrav/initializers/gravity.h"
 
 namespace trigrav {
 namespace {
@@ -156,8 +156,8 @@ TEST(InitializeAndRefineTest, GravityPriorBeatsYawOnlyWithImuNoise) {
 }
 
 // KITTI-like driving with 0.1 deg of IMU noise, 1.5 px threshold: the gravity-prior model corrects
-// the tilt already in RANSAC (the automatic max_tilt_correction_deg), so the refinement starts from the true
-// motion and wins the IMU's error back; from upright RANSAC models it often cannot.
+// the tilt already in RANSAC (the automatic max_tilt_correction_deg), so the refinement starts from
+// the true motion and wins the IMU's error back; from upright RANSAC models it often cannot.
 TEST(InitializeAndRefineTest, GravityPriorWinsBackImuTiltOnDrivingTriplets) {
   InitializeAndRefineOptions options;
   options.robust.ransac.max_error = 1.5;
@@ -222,7 +222,8 @@ TEST(InitializeAndRefineTest, RefinesThreeHundredInliersToTheTruth) {
       ASSERT_GE(estimate.refinement_runs, 1) << estimate.message;
       EXPECT_GE(estimate.refinement.summary.num_points, 280);
       EXPECT_EQ(estimate.refinement.points_in_cam1.size(), estimate.refinement.triplets.size());
-      const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(scene.ground_truth, estimate.refined);
+      const ThreeViewPoseErrors e =
+          ComputeThreeViewPoseErrors(scene.ground_truth, estimate.refined);
       EXPECT_LT(e.MaxRotationDeg(), 1e-6);
       EXPECT_LT(e.MaxTranslationDeg(), 1e-6);
       EXPECT_LT(e.relative_scale, 1e-6);

@@ -1,4 +1,5 @@
-// Bad-input matrix: every public entry point of trigrav against every bad input below, each (case, entry point) pair checked against the outcome written down in Cases():
+// Bad-input matrix: every public entry point of trigrav against every bad input below, each (case,
+// entry point) pair checked against the outcome written down in Cases():
 //   - std::invalid_argument whose message names the problem (misuse at the public boundary);
 //   - no solution: 0 poses, success == false with a message, Build() == false, no triangulation;
 //   - the true pose (point, alignment) among the results;
@@ -26,10 +27,10 @@
 #include "bad_input_scenes.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/ba/three_view_bundle_adjustment.h"
+#include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/initializers/essential_5pt.h"
 #include "trigrav/initializers/essential_8pt.h"
 #include "trigrav/initializers/gravity.h"
-#include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/initializers/robust_three_view.h"
 #include "trigrav/initializers/three_view_error.h"
 #include "trigrav/initializers/trifocal_3pt.h"
@@ -697,8 +698,8 @@ void AddOptionCases(std::vector<Case>* cases) {
        {"RansacOptions::local_optimization_threshold_multiplier = 0.5",
         [](RO* o) { o->local_optimization_threshold_multiplier = 0.5; }}},
       &Input::ransac);
-  for (const auto& [name, value] : {std::pair<const char*, double>{"NaN", kNaN}, {"-2", -2.0},
-                                     {"90", 90.0}, {"+Inf", kInf}}) {
+  for (const auto& [name, value] :
+       {std::pair<const char*, double>{"NaN", kNaN}, {"-2", -2.0}, {"90", 90.0}, {"+Inf", kInf}}) {
     cases->push_back(MakeCase(group, std::string("max_tilt_correction_deg = ") + name,
                               kTiltCorrection, kThrows,
                               "RobustThreeViewOptions: max_tilt_correction_deg",

@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "trigrav/ba/initialize_and_refine.h"
+#include "trigrav/evaluation/synthetic_scene.h"
 #include "trigrav/initializers/ransac.h"
 #include "trigrav/initializers/robust_three_view.h"
-#include "trigrav/evaluation/synthetic_scene.h"
 
 namespace trigrav {
 namespace {

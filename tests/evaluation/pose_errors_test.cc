@@ -1,16 +1,17 @@
 #include "trigrav/evaluation/pose_errors.h"
 
-#include <cmath>
-#include <stdexcept>
+#include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-#include <gtest/gtest.h>
+#include <cmath>
+#include <stdexcept>
 
 namespace trigrav {
 namespace {
 
 TEST(PoseMetrics, RotationErrorIsTheAngleEvenWhenTiny) {
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   for (const double angle_deg : {1e-12, 1e-6, 0.5, 30.0, 179.0}) {
     const Eigen::Matrix3d delta =
         Eigen::AngleAxisd(angle_deg * M_PI / 180.0, Eigen::Vector3d(0.3, -1, 0.2).normalized())

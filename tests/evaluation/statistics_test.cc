@@ -1,11 +1,11 @@
 // Statistics: the one quantile convention (Hyndman and Fan's definition 2) and the log error.
+#include "trigrav/evaluation/statistics.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <vector>
-
-#include "trigrav/evaluation/statistics.h"
 
 namespace trigrav {
 namespace {
@@ -21,7 +21,7 @@ TEST(Statistics, QuantileInvertsTheEmpiricalDistributionAveragingAtItsSteps) {
   const std::vector<double> ten = {10, 1, 9, 2, 8, 3, 7, 4, 6, 5};
   EXPECT_DOUBLE_EQ(Quantile(ten, 0.0), 1.0);
   EXPECT_DOUBLE_EQ(Quantile(ten, 1.0), 10.0);
-  EXPECT_DOUBLE_EQ(Quantile(ten, 0.9), 9.5);   // qn = 9: mean of x_9 and x_10
+  EXPECT_DOUBLE_EQ(Quantile(ten, 0.9), 9.5);    // qn = 9: mean of x_9 and x_10
   EXPECT_DOUBLE_EQ(Quantile(ten, 0.95), 10.0);  // qn = 9.5: x_10
   EXPECT_DOUBLE_EQ(Quantile(ten, 0.25), 3.0);   // qn = 2.5: x_3
   EXPECT_DOUBLE_EQ(Quantile(ten, 0.5), Median(ten));

@@ -1,13 +1,13 @@
 #include "trigrav/evaluation/synthetic_scene.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <random>
 #include <stdexcept>
 
-#include <gtest/gtest.h>
-
-#include "trigrav/initializers/gravity.h"
 #include "trigrav/evaluation/pose_errors.h"
+#include "trigrav/initializers/gravity.h"
 
 namespace trigrav {
 namespace {
@@ -33,7 +33,8 @@ TEST(SyntheticScene, NoiseFreeSceneIsConsistent) {
         EXPECT_GE(pixel.y(), 0.0);
         EXPECT_LE(pixel.y(), options.height_px);
         // Ray of view k points at the point, through the ground-truth relative pose.
-        const Eigen::Vector3d point_in_cam = k == 0 ? point_in_cam1 : poses[k]->Apply(point_in_cam1);
+        const Eigen::Vector3d point_in_cam =
+            k == 0 ? point_in_cam1 : poses[k]->Apply(point_in_cam1);
         EXPECT_GT(point_in_cam.z(), options.min_depth_all_views_m);
         EXPECT_NEAR((point_in_cam / point_in_cam.z() - scene.rays[k][n]).norm(), 0.0, 1e-12);
       }
@@ -48,7 +49,8 @@ TEST(SyntheticScene, NoiseFreeSceneIsConsistent) {
       const Eigen::Matrix3d aligned_R = scene.gravity_alignment_true[k] * scene.cam_from_world[k] *
                                         scene.cam_from_world[0].transpose() *
                                         scene.gravity_alignment_true[0].transpose();
-      EXPECT_NEAR((aligned_R - RotationAboutY(scene.yaw_rad[k] - scene.yaw_rad[0])).norm(), 0.0, 1e-13);
+      EXPECT_NEAR((aligned_R - RotationAboutY(scene.yaw_rad[k] - scene.yaw_rad[0])).norm(), 0.0,
+                  1e-13);
     }
     EXPECT_NEAR(scene.center_in_world[0].norm(), 0.0, 0.0);
   }
@@ -64,19 +66,19 @@ TEST(SyntheticScene, NoiseHasTheRequestedSpread) {
   double sum_squares = 0.0, tilt_sum_squares = 0.0;
   int count = 0, tilt_count = 0;
   for (int trial = 0; trial < 100; ++trial) {
-    // Same seed: the same cameras and points, so the difference is the noise. Noise is drawn after the
-    // point is accepted, so both generators stay in step.
+    // Same seed: the same cameras and points, so the difference is the noise. Noise is drawn after
+    // the point is accepted, so both generators stay in step.
     const SyntheticScene clean = GenerateSyntheticScene(options, &noise_free_rng);
     const SyntheticScene dirty = GenerateSyntheticScene(noisy, &noisy_rng);
     (void)clean;
     for (int k = 0; k < 3; ++k) {
-      const double tilt = RotationErrorDeg(dirty.gravity_alignment_true[k],
-                                           dirty.gravity_alignment_measured[k]);
+      const double tilt =
+          RotationErrorDeg(dirty.gravity_alignment_true[k], dirty.gravity_alignment_measured[k]);
       tilt_sum_squares += tilt * tilt;
       ++tilt_count;
       for (std::size_t n = 0; n < dirty.points_in_world.size(); ++n) {
-        const Eigen::Vector3d p = dirty.cam_from_world[k] *
-                                  (dirty.points_in_world[n] - dirty.center_in_world[k]);
+        const Eigen::Vector3d p =
+            dirty.cam_from_world[k] * (dirty.points_in_world[n] - dirty.center_in_world[k]);
         const Eigen::Vector2d exact(noisy.focal_px * p.x() / p.z() + 320.0,
                                     noisy.focal_px * p.y() / p.z() + 240.0);
         sum_squares += (dirty.pixels[k][n] - exact).squaredNorm();

@@ -17,12 +17,12 @@
 #include <stdexcept>
 #include <vector>
 
-#include "trigrav/factors/angle_manifold.h"
-#include "trigrav/factors/reprojection_factors.h"
-#include "trigrav/initializers/gravity.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"
+#include "trigrav/factors/angle_manifold.h"
+#include "trigrav/factors/reprojection_factors.h"
+#include "trigrav/initializers/gravity.h"
 
 namespace trigrav {
 namespace {

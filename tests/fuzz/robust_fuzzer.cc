@@ -124,10 +124,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   TRIGRAV_FUZZ_CHECK(estimate.inliers.size() == observations.size(), "one inlier flag per triplet");
   TRIGRAV_FUZZ_CHECK(
       estimate.ransac.num_inliers == std::count_if(estimate.inliers.begin(), estimate.inliers.end(),
-                                            [](char flag) { return flag != 0; }),
+                                                   [](char flag) { return flag != 0; }),
       "num_inliers differs from the flags set");
   TRIGRAV_FUZZ_CHECK(estimate.ransac.num_inliers >= MinimalSampleSize(options.solver),
                      "fewer inliers than a minimal sample");
-  TRIGRAV_FUZZ_CHECK(estimate.ransac.iterations <= options.ransac.max_iterations, "too many iterations");
+  TRIGRAV_FUZZ_CHECK(estimate.ransac.iterations <= options.ransac.max_iterations,
+                     "too many iterations");
   return 0;
 }

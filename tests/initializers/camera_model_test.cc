@@ -1,13 +1,13 @@
 // Camera models: COLMAP names and parameter counts, projection against hand-computed values, and
 // the round trip pixel -> ray -> pixel to 1e-10 px for every model over the whole image.
+#include "trigrav/initializers/camera_model.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 #include <stdexcept>
 #include <vector>
-
-#include "trigrav/initializers/camera_model.h"
 
 namespace trigrav {
 namespace {
@@ -24,8 +24,7 @@ Camera TypicalCamera(CameraModel model) {
     case CameraModel::kRadial:
       return Camera::FromColmap("RADIAL", {1000.0, 640.0, 480.0, -0.2, 0.05});
     case CameraModel::kOpenCV:
-      return Camera::FromColmap("OPENCV",
-                                {1000.0, 1010.0, 640.0, 480.0, -0.3, 0.1, 1e-3, -5e-4});
+      return Camera::FromColmap("OPENCV", {1000.0, 1010.0, 640.0, 480.0, -0.3, 0.1, 1e-3, -5e-4});
     case CameraModel::kOpenCVFisheye:
       return Camera::FromColmap("OPENCV_FISHEYE",
                                 {600.0, 600.0, 640.0, 480.0, 0.05, -0.01, 0.002, -0.0005});
@@ -68,8 +67,8 @@ TEST(CameraModel, ProjectionMatchesTheFormulas) {
   EXPECT_NEAR(opencv.Project(point).y(), 1010.0 * v_d + 480.0, 1e-9);
   const Camera fisheye = TypicalCamera(CameraModel::kOpenCVFisheye);
   const double r = std::sqrt(r2), theta = std::atan(r), t2 = theta * theta;
-  const double theta_d = theta * (1 + 0.05 * t2 - 0.01 * t2 * t2 + 0.002 * t2 * t2 * t2 -
-                                  0.0005 * t2 * t2 * t2 * t2);
+  const double theta_d =
+      theta * (1 + 0.05 * t2 - 0.01 * t2 * t2 + 0.002 * t2 * t2 * t2 - 0.0005 * t2 * t2 * t2 * t2);
   EXPECT_NEAR(fisheye.Project(point).x(), 600.0 * u * theta_d / r + 640.0, 1e-9);
   const Camera pinhole = Camera::FromPinhole(PinholeCamera{500.0, 510.0, 320.0, 240.0});
   const PinholeCamera reference{500.0, 510.0, 320.0, 240.0};
@@ -88,10 +87,12 @@ TEST(CameraModel, UnprojectRoundTripsEveryPixelOfTheImage) {
     double worst_px = 0.0;
     for (int n = 0; n < 2000; ++n) {
       // The corners first, then random pixels.
-      const Eigen::Vector2d pixel = n < 4 ? Eigen::Vector2d(n % 2 ? 1280.0 : 0.0, n / 2 ? 960.0 : 0.0)
-                                          : Eigen::Vector2d(x(rng), y(rng));
+      const Eigen::Vector2d pixel = n < 4
+                                        ? Eigen::Vector2d(n % 2 ? 1280.0 : 0.0, n / 2 ? 960.0 : 0.0)
+                                        : Eigen::Vector2d(x(rng), y(rng));
       Eigen::Vector3d ray;
-      ASSERT_TRUE(camera.Unproject(pixel, &ray)) << CameraModelName(model) << " " << pixel.transpose();
+      ASSERT_TRUE(camera.Unproject(pixel, &ray))
+          << CameraModelName(model) << " " << pixel.transpose();
       EXPECT_EQ(ray.z(), 1.0);
       worst_px = std::max(worst_px, (camera.Project(ray) - pixel).norm());
     }

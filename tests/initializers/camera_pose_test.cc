@@ -1,9 +1,9 @@
 // CameraPose: centre, inverse and composition against hand-made transforms.
+#include "trigrav/initializers/camera_pose.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
-#include "trigrav/initializers/camera_pose.h"
 
 namespace trigrav {
 namespace {

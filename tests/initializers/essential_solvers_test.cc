@@ -1,3 +1,6 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -6,15 +9,12 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/LU>
-#include <gtest/gtest.h>
-
-#include "trigrav/initializers/essential_5pt.h"
-#include "trigrav/initializers/essential_8pt.h"
+#include "solver_test_utils.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"
-#include "solver_test_utils.h"
+#include "trigrav/initializers/essential_5pt.h"
+#include "trigrav/initializers/essential_8pt.h"
 
 namespace trigrav {
 namespace {
@@ -48,7 +48,6 @@ SyntheticSceneOptions SceneOptions(int num_points, double noise_px = 0.0) {
   return options;
 }
 
-
 TEST(Essential5pt, TruePoseAmongSolutionsNoiseFree) {
   std::mt19937_64 rng(11);
   constexpr int kScenes = 2000;
@@ -75,10 +74,11 @@ TEST(Essential5pt, TruePoseAmongSolutionsNoiseFree) {
     found += e.rotation_deg < 1e-6 && e.translation_deg < 1e-6;
   }
   const double rate = static_cast<double>(found) / kScenes;
-  std::printf("[ 5pt     ] true pose found in %d / %d scenes (%.2f %%); %.2f solutions per scene "
-              "(max %d); median error %.2e deg, worst %.2e deg\n",
-              found, kScenes, 100.0 * rate, static_cast<double>(total_solutions) / kScenes,
-              max_solutions, Median(errors), worst);
+  std::printf(
+      "[ 5pt     ] true pose found in %d / %d scenes (%.2f %%); %.2f solutions per scene "
+      "(max %d); median error %.2e deg, worst %.2e deg\n",
+      found, kScenes, 100.0 * rate, static_cast<double>(total_solutions) / kScenes, max_solutions,
+      Median(errors), worst);
   EXPECT_GE(rate, 0.995);
 }
 
@@ -252,9 +252,7 @@ TEST(Essential5pt, MisuseThrows) {
   EXPECT_THROW(SolveEssential5pt(scene.rays[0], scene.rays[1], &solutions), std::invalid_argument);
 }
 
-TEST(Essential8pt, MisuseThrows) {
-  ExpectMisuseThrows(&SolveEssential8pt, 8, "at least 8");
-}
+TEST(Essential8pt, MisuseThrows) { ExpectMisuseThrows(&SolveEssential8pt, 8, "at least 8"); }
 
 // Degenerate input: never NaN; 0 solutions where the degeneracy is exact and detectable (the 5pt
 // with exactly zero translation returns spurious but finite poses in about 1 % of scenes).

@@ -1,11 +1,11 @@
 #include "trigrav/initializers/gravity.h"
 
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
 #include <cmath>
 #include <random>
 #include <stdexcept>
-
-#include <Eigen/Geometry>
-#include <gtest/gtest.h>
 
 #include "trigrav/evaluation/pose_errors.h"
 
@@ -44,7 +44,8 @@ TEST(Gravity, PitchRollAlignmentAgreesWithGravityUpToYaw) {
     const Eigen::Matrix3d from_gravity = GravityAlignmentFromGravity(GravityInCamera(from_angles));
     // The two differ by a left rotation about y only.
     const Eigen::Matrix3d difference = from_gravity * from_angles.transpose();
-    EXPECT_NEAR((difference * Eigen::Vector3d::UnitY() - Eigen::Vector3d::UnitY()).norm(), 0.0, 1e-14);
+    EXPECT_NEAR((difference * Eigen::Vector3d::UnitY() - Eigen::Vector3d::UnitY()).norm(), 0.0,
+                1e-14);
   }
 }
 
@@ -67,15 +68,16 @@ TEST(Gravity, UnalignInvertsAlignment) {
     EXPECT_NEAR((back.Center() - align_ref.transpose() * aligned.Center()).norm(), 0.0, 1e-13);
     // A point seen by both: aligned projection equals the aligned original projection.
     const Eigen::Vector3d point_in_ref(u(rng), u(rng), 5.0);
-    EXPECT_NEAR((align_cam * original.Apply(point_in_ref) - aligned.Apply(align_ref * point_in_ref))
-                    .norm(),
-                0.0, 1e-13);
+    EXPECT_NEAR(
+        (align_cam * original.Apply(point_in_ref) - aligned.Apply(align_ref * point_in_ref)).norm(),
+        0.0, 1e-13);
   }
 }
 
 TEST(Gravity, AlignRaysKeepsDirectionAndSign) {
   const Eigen::Matrix3d R = GravityAlignmentFromPitchRoll(0.3, -0.2);
-  const std::vector<Eigen::Vector3d> rays = {Eigen::Vector3d(0.1, 0.2, 1.0), Eigen::Vector3d(0, 0, -1)};
+  const std::vector<Eigen::Vector3d> rays = {Eigen::Vector3d(0.1, 0.2, 1.0),
+                                             Eigen::Vector3d(0, 0, -1)};
   const std::vector<Eigen::Vector3d> aligned = AlignRays(R, rays);
   ASSERT_EQ(aligned.size(), 2u);
   EXPECT_NEAR((aligned[1] - R * rays[1]).norm(), 0.0, 0.0);

@@ -1,12 +1,12 @@
 #include "trigrav/initializers/ransac.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
 #include <random>
 #include <stdexcept>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 namespace trigrav {
 namespace {

@@ -1,5 +1,7 @@
 #include "trigrav/initializers/robust_three_view.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -7,8 +9,6 @@
 #include <stdexcept>
 #include <utility>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "driving_scene.h"
 #include "trigrav/evaluation/pose_errors.h"
@@ -24,7 +24,9 @@ struct ProblemWithOutliers {
   std::vector<char> is_inlier;
 };
 
-ProblemWithOutliers MakeProblem(int num_points, double noise_px, double outlier_ratio,
+ProblemWithOutliers MakeProblem(int num_points,
+                                double noise_px,
+                                double outlier_ratio,
                                 std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   SyntheticSceneOptions scene_options;
@@ -39,7 +41,7 @@ ProblemWithOutliers MakeProblem(int num_points, double noise_px, double outlier_
 }
 
 struct Outcome {
-  double recall = 0.0;           // true inliers found / true inliers
+  double recall = 0.0;             // true inliers found / true inliers
   double false_inlier_rate = 0.0;  // outliers accepted / outliers
   ThreeViewPoseErrors errors;
 };
@@ -66,8 +68,8 @@ class RobustEveryMethod : public ::testing::TestWithParam<InitialSolver> {};
 
 // What "the pose within the noise level" means per method: the error its own non-minimal solver
 // reaches on ~100 true inliers at 1 px. The linear trifocal tensor (7pt-Hartley-3view, no gravity,
-// 26 unknowns) is far weaker there: about 0.9 deg median rotation error even with 50 exact inliers, so
-// its model also keeps fewer inliers under a 3 px threshold.
+// 26 unknowns) is far weaker there: about 0.9 deg median rotation error even with 50 exact inliers,
+// so its model also keeps fewer inliers under a 3 px threshold.
 struct Expectation {
   double min_recall, max_rotation_deg, max_translation_deg, max_scale;
 };
@@ -76,8 +78,8 @@ Expectation ExpectationFor(InitialSolver solver) {
   return {0.95, 0.5, 3.0, 0.05};
 }
 
-// 200 triplets, 1 px noise, 50 % outliers, a 3 px threshold (derivations.md section 7: p99 of the inlier
-// error is 2.7 px at 1 px noise).
+// 200 triplets, 1 px noise, 50 % outliers, a 3 px threshold (derivations.md section 7: p99 of the
+// inlier error is 2.7 px at 1 px noise).
 TEST_P(RobustEveryMethod, FindsInliersAndPoseAtHalfOutliers) {
   RobustThreeViewOptions options;
   options.solver = GetParam();
@@ -86,14 +88,16 @@ TEST_P(RobustEveryMethod, FindsInliersAndPoseAtHalfOutliers) {
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     const ProblemWithOutliers problem = MakeProblem(200, 1.0, 0.5, seed);
     options.ransac.seed = seed;
-    const RobustThreeViewEstimate estimate = EstimateThreeViewPoseRobust(problem.observations, options);
+    const RobustThreeViewEstimate estimate =
+        EstimateThreeViewPoseRobust(problem.observations, options);
     ASSERT_TRUE(estimate.success) << estimate.message;
     ASSERT_TRUE(estimate.pose.IsFinite());
     const Outcome outcome = Evaluate(problem, estimate);
     const char* name = InitialSolverName(GetParam());
     EXPECT_GE(outcome.recall, expected.min_recall) << name << " seed " << seed;
     EXPECT_LE(outcome.false_inlier_rate, 0.02) << name << " seed " << seed;
-    EXPECT_LT(outcome.errors.MaxRotationDeg(), expected.max_rotation_deg) << name << " seed " << seed;
+    EXPECT_LT(outcome.errors.MaxRotationDeg(), expected.max_rotation_deg)
+        << name << " seed " << seed;
     EXPECT_LT(outcome.errors.MaxTranslationDeg(), expected.max_translation_deg) << name;
     EXPECT_LT(outcome.errors.relative_scale, expected.max_scale) << name << " seed " << seed;
   }
@@ -114,14 +118,14 @@ TEST_P(RobustEveryMethod, SameSeedSameResult) {
   EXPECT_EQ(a.pose.cam3_from_cam1.t, b.pose.cam3_from_cam1.t);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AllMethods, RobustEveryMethod,
-    ::testing::ValuesIn(kInitialSolvers),
-    [](const ::testing::TestParamInfo<InitialSolver>& info) {
-      std::string name = InitialSolverName(info.param);
-      std::replace(name.begin(), name.end(), '-', '_');
-      return "m" + name;
-    });
+INSTANTIATE_TEST_SUITE_P(AllMethods,
+                         RobustEveryMethod,
+                         ::testing::ValuesIn(kInitialSolvers),
+                         [](const ::testing::TestParamInfo<InitialSolver>& info) {
+                           std::string name = InitialSolverName(info.param);
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return "m" + name;
+                         });
 
 TEST(RobustThreeView, ThreePointSolverAtEightyPercentOutliers) {
   RobustThreeViewOptions options;
@@ -129,7 +133,8 @@ TEST(RobustThreeView, ThreePointSolverAtEightyPercentOutliers) {
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     const ProblemWithOutliers problem = MakeProblem(200, 1.0, 0.8, seed);
     options.ransac.seed = seed;
-    const RobustThreeViewEstimate estimate = EstimateThreeViewPoseRobust(problem.observations, options);
+    const RobustThreeViewEstimate estimate =
+        EstimateThreeViewPoseRobust(problem.observations, options);
     ASSERT_TRUE(estimate.success) << estimate.message;
     const Outcome outcome = Evaluate(problem, estimate);
     EXPECT_GE(outcome.recall, 0.95) << "seed " << seed;
@@ -138,8 +143,8 @@ TEST(RobustThreeView, ThreePointSolverAtEightyPercentOutliers) {
   }
 }
 
-// Straight driving (collinear centres): an outlier sliding 20 px along its epipolar line in view 3 is
-// rejected by the three-view error.
+// Straight driving (collinear centres): an outlier sliding 20 px along its epipolar line in view 3
+// is rejected by the three-view error.
 TEST(RobustThreeView, RejectsEpipolarSlidingOutlierWhenDrivingStraight) {
   std::mt19937_64 rng(5);
   const double f = 500.0;
@@ -154,7 +159,8 @@ TEST(RobustThreeView, RejectsEpipolarSlidingOutlierWhenDrivingStraight) {
     }
   }
   // Triplet 0: view 3 slides 20 px away from the epipole (the principal point) along its line.
-  const Eigen::Vector2d radial = (observations.pixels[2][0] - Eigen::Vector2d(320, 240)).normalized();
+  const Eigen::Vector2d radial =
+      (observations.pixels[2][0] - Eigen::Vector2d(320, 240)).normalized();
   observations.pixels[2][0] += 20.0 * radial;
   RobustThreeViewOptions options;
   options.ransac.max_error = 2.0;
@@ -169,7 +175,8 @@ TEST(RobustThreeView, RejectsEpipolarSlidingOutlierWhenDrivingStraight) {
 
 // Angle between camera 1's gravity carried into camera k by the estimate and camera k's given
 // gravity.
-double TiltChangeDeg(const ThreeViewObservations& observations, const CameraPose& camk_from_cam1,
+double TiltChangeDeg(const ThreeViewObservations& observations,
+                     const CameraPose& camk_from_cam1,
                      int k) {
   return DirectionErrorDeg(observations.gravity_in_cam[k],
                            camk_from_cam1.R * observations.gravity_in_cam[0]);
@@ -206,9 +213,10 @@ TEST(RobustThreeView, TiltCorrectionKeepsRansacOnTheTrueMotionWithImuGravity) {
       }
     }
   }
-  std::printf("gross translation errors (> 10 deg) of 60: upright %d, tilt-corrected %d; "
-              "tilt-corrected median rotation error %.3f deg\n",
-              gross_upright, gross_corrected, Median(rotation_corrected));
+  std::printf(
+      "gross translation errors (> 10 deg) of 60: upright %d, tilt-corrected %d; "
+      "tilt-corrected median rotation error %.3f deg\n",
+      gross_upright, gross_corrected, Median(rotation_corrected));
   ASSERT_GE(gross_upright, 10) << "the scenes no longer show the upright failure";
   EXPECT_LE(gross_corrected, 4);
   EXPECT_LT(Median(rotation_corrected), 0.25);
@@ -231,7 +239,8 @@ TEST(RobustThreeView, TiltCorrectionBelowSevenTripletsIsTheUprightRefinement) {
         EstimateThreeViewPoseRobust(problem.observations, options);
     ASSERT_TRUE(upright.success && bounded.success) << upright.message << bounded.message;
     refined += upright.ransac.num_local_optimizations > 0;
-    EXPECT_EQ(bounded.ransac.num_local_optimizations, upright.ransac.num_local_optimizations) << "seed " << seed;
+    EXPECT_EQ(bounded.ransac.num_local_optimizations, upright.ransac.num_local_optimizations)
+        << "seed " << seed;
     EXPECT_EQ(bounded.pose.cam2_from_cam1.R, upright.pose.cam2_from_cam1.R) << "seed " << seed;
     EXPECT_EQ(bounded.pose.cam3_from_cam1.t, upright.pose.cam3_from_cam1.t) << "seed " << seed;
   }
@@ -272,9 +281,9 @@ TEST(RobustThreeView, MisuseThrowsAndHopelessInputFails) {
 
 TEST(RobustThreeView, SolverNamesRoundTripAndSampleSizes) {
   const std::vector<std::pair<InitialSolver, int>> solvers = {
-      {InitialSolver::kTrifocal3pt, 3},    {InitialSolver::kTrifocal3ptSextic, 3},
-      {InitialSolver::kTrifocal4pt, 4},    {InitialSolver::kTrifocalLinear, 7},
-      {InitialSolver::kEssential5pt, 5},   {InitialSolver::kEssential8pt, 8}};
+      {InitialSolver::kTrifocal3pt, 3},  {InitialSolver::kTrifocal3ptSextic, 3},
+      {InitialSolver::kTrifocal4pt, 4},  {InitialSolver::kTrifocalLinear, 7},
+      {InitialSolver::kEssential5pt, 5}, {InitialSolver::kEssential8pt, 8}};
   for (const auto& [solver, sample_size] : solvers) {
     InitialSolver parsed;
     ASSERT_TRUE(ParseInitialSolver(InitialSolverName(solver), &parsed));

@@ -1,11 +1,11 @@
 #include "trigrav/initializers/three_view_error.h"
 
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
 #include <random>
-
-#include <Eigen/Geometry>
-#include <gtest/gtest.h>
 
 #include "trigrav/evaluation/synthetic_scene.h"
 
@@ -60,9 +60,9 @@ TEST(ThreeViewReprojectionError, InfiniteBehindACamera) {
             std::numeric_limits<double>::infinity());
 }
 
-// Straight driving: collinear centres make the three epipolar constraints coincide. A view-3 outlier
-// that slides 20 px along its epipolar line keeps every pairwise epipolar error at zero, but its
-// triangulation disagrees with views 1 and 2 (derivations.md section 7).
+// Straight driving: collinear centres make the three epipolar constraints coincide. A view-3
+// outlier that slides 20 px along its epipolar line keeps every pairwise epipolar error at zero,
+// but its triangulation disagrees with views 1 and 2 (derivations.md section 7).
 TEST(ThreeViewReprojectionError, SeesAnOutlierSlidingAlongItsEpipolarLine) {
   const double f = 500.0;
   ThreeViewPose pose;  // cameras at z = 0, 1, 2 m, same orientation: forward motion
@@ -73,7 +73,8 @@ TEST(ThreeViewReprojectionError, SeesAnOutlierSlidingAlongItsEpipolarLine) {
   for (int k = 0; k < 3; ++k) {
     observations.cameras[k] = {f, f, 320.0, 240.0};
     const Eigen::Vector3d p = point - Eigen::Vector3d(0.0, 0.0, k);
-    observations.pixels[k] = {Eigen::Vector2d(f * p.x() / p.z() + 320.0, f * p.y() / p.z() + 240.0)};
+    observations.pixels[k] = {
+        Eigen::Vector2d(f * p.x() / p.z() + 320.0, f * p.y() / p.z() + 240.0)};
   }
   const auto prepared = ThreeViewReprojectionError::Prepare(pose);
   EXPECT_LT(ThreeViewReprojectionError(observations)(prepared, 0), 1e-9);

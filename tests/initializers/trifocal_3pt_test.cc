@@ -1,5 +1,7 @@
 #include "trigrav/initializers/trifocal_3pt.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -9,23 +11,25 @@
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
-#include "trigrav/initializers/gravity.h"
+#include "solver_test_utils.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"
-#include "solver_test_utils.h"
+#include "trigrav/initializers/gravity.h"
 
 namespace trigrav {
 namespace {
 
 using Rays = std::vector<Eigen::Vector3d>;
-using AlignedSolver = std::function<int(const Rays&, const Rays&, const Rays&,
+using AlignedSolver =
+    std::function<int(const Rays&, const Rays&, const Rays&, std::vector<ThreeViewPose>*)>;
+using GravitySolver = std::function<int(const Rays&,
+                                        const Rays&,
+                                        const Rays&,
+                                        const Eigen::Vector3d&,
+                                        const Eigen::Vector3d&,
+                                        const Eigen::Vector3d&,
                                         std::vector<ThreeViewPose>*)>;
-using GravitySolver =
-    std::function<int(const Rays&, const Rays&, const Rays&, const Eigen::Vector3d&,
-                      const Eigen::Vector3d&, const Eigen::Vector3d&, std::vector<ThreeViewPose>*)>;
 
 struct NamedSolver {
   const char* name;
@@ -61,7 +65,8 @@ SyntheticSceneOptions ThreePointOptions() {
 }
 
 // Solves a scene through the gravity overload with the measured gravity of each view.
-int SolveScene(const GravitySolver& solve, const SyntheticScene& scene,
+int SolveScene(const GravitySolver& solve,
+               const SyntheticScene& scene,
                std::vector<ThreeViewPose>* solutions) {
   return solve(scene.rays[0], scene.rays[1], scene.rays[2], scene.gravity_in_cam_measured[0],
                scene.gravity_in_cam_measured[1], scene.gravity_in_cam_measured[2], solutions);
@@ -69,7 +74,8 @@ int SolveScene(const GravitySolver& solve, const SyntheticScene& scene,
 
 // Index of the candidate closest to the truth (worst of rotation and translation errors), -1 if
 // none.
-int ClosestCandidate(const ThreeViewPose& truth, const std::vector<ThreeViewPose>& solutions,
+int ClosestCandidate(const ThreeViewPose& truth,
+                     const std::vector<ThreeViewPose>& solutions,
                      ThreeViewPoseErrors* errors) {
   int best = -1;
   for (std::size_t i = 0; i < solutions.size(); ++i) {
@@ -81,7 +87,6 @@ int ClosestCandidate(const ThreeViewPose& truth, const std::vector<ThreeViewPose
   }
   return best;
 }
-
 
 // The ground truth of a scene in gravity-aligned frames (the inverse of UnalignThreeViewPose).
 ThreeViewPose AlignedTruth(const ThreeViewPose& truth,
@@ -136,7 +141,8 @@ TEST(Trifocal3ptSextic, NoiseFreeContainsTruthInMostScenes) {
     found += ClosestCandidate(scene.ground_truth, solutions, &e) >= 0 && e.MaxAngleDeg() < 1e-4 &&
              e.relative_scale < 1e-4;
   }
-  // derivations.md section 9: the paper's system has near-double roots; about 1 % of scenes lose the truth.
+  // derivations.md section 9: the paper's system has near-double roots; about 1 % of scenes lose
+  // the truth.
   EXPECT_GE(found, 0.95 * kScenes);
 }
 
@@ -152,9 +158,8 @@ TEST(Trifocal3pt, GeneralisesToUnseenScenes) {
       SolveScene(Solvers()[0].gravity, scene, &solutions);
       ThreeViewPoseErrors e;
       ASSERT_GE(ClosestCandidate(scene.ground_truth, solutions, &e), 0);
-      ASSERT_LT(e.MaxAngleDeg(), 1e-6)
-          << "f " << scene_options.focal_px << " yaw " << scene_options.max_yaw_deg << " trial "
-          << trial;
+      ASSERT_LT(e.MaxAngleDeg(), 1e-6) << "f " << scene_options.focal_px << " yaw "
+                                       << scene_options.max_yaw_deg << " trial " << trial;
     }
   }
 }
@@ -245,7 +250,7 @@ TEST(Trifocal3pt, MisuseThrows) {
       EXPECT_THROW(solver.gravity(a, b, c, g, g, g, &solutions), std::invalid_argument)
           << solver.name;
     };
-    bad(scene.rays[0], scene.rays[1], scene.rays[2]);  // 4 triplets
+    bad(scene.rays[0], scene.rays[1], scene.rays[2]);     // 4 triplets
     bad({x1[0], x1[1]}, {x2[0], x2[1]}, {x3[0], x3[1]});  // 2 triplets
     bad({}, {}, {});                                      // empty
     bad(x1, {x2[0], x2[1]}, x3);                          // sizes differ
@@ -331,9 +336,10 @@ TEST(Trifocal3pt, DegenerateInputGivesFinitePosesOnly) {
   }
 }
 
-// With 1 px noise the best-ranked candidate is about as accurate as derivations.md section 8.5 measured
-// (median rotation error 1.23 deg decoupled, 3.42 deg sextic); scenes without a candidate count as
-// a 180 deg error. The decoupled solver is the more accurate one (derivations.md section 9).
+// With 1 px noise the best-ranked candidate is about as accurate as derivations.md section 8.5
+// measured (median rotation error 1.23 deg decoupled, 3.42 deg sextic); scenes without a candidate
+// count as a 180 deg error. The decoupled solver is the more accurate one (derivations.md section
+// 9).
 TEST(Trifocal3pt, NoisyMedianErrorsMatchTheNote) {
   std::array<double, 2> medians{};
   for (int s = 0; s < 2; ++s) {

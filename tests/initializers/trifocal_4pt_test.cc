@@ -1,5 +1,7 @@
 #include "trigrav/initializers/trifocal_4pt.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -7,18 +9,17 @@
 #include <stdexcept>
 #include <vector>
 
-#include <gtest/gtest.h>
-
-#include "trigrav/initializers/gravity.h"
+#include "solver_test_utils.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/synthetic_scene.h"
-#include "solver_test_utils.h"
+#include "trigrav/initializers/gravity.h"
 
 namespace trigrav {
 namespace {
 
 // Solves a scene through the gravity overload with the measured gravity of each view.
-int SolveScene(const SyntheticScene& scene, const Trifocal4ptOptions& options,
+int SolveScene(const SyntheticScene& scene,
+               const Trifocal4ptOptions& options,
                std::vector<ThreeViewPose>* solutions) {
   return SolveTrifocal4pt(scene.rays[0], scene.rays[1], scene.rays[2],
                           scene.gravity_in_cam_measured[0], scene.gravity_in_cam_measured[1],
@@ -41,7 +42,8 @@ TEST(Trifocal4pt, RecoversTruePoseNoiseFreeOnThousandScenes) {
     worst = std::max(worst, error);
     if (!(error < 1e-8 && e.relative_scale < 1e-9)) {
       ++failures;
-      ADD_FAILURE() << "trial " << trial << " error " << error << " deg, scale " << e.relative_scale;
+      ADD_FAILURE() << "trial " << trial << " error " << error << " deg, scale "
+                    << e.relative_scale;
     }
   }
   EXPECT_EQ(failures, 0) << "worst error " << worst << " deg";
@@ -78,13 +80,15 @@ TEST(Trifocal4pt, PaperVariantsExactNoiseFree) {
       Trifocal4ptOptions options;
       options.recovery = recovery;
       options.resolve_translations = resolve;
-      options.polish_iterations = 0;  // each variant alone, as the paper and derivations.md section 4 define it
+      options.polish_iterations =
+          0;  // each variant alone, as the paper and derivations.md section 4 define it
       for (int trial = 0; trial < 200; ++trial) {
         const SyntheticScene scene = GenerateSyntheticScene(SyntheticSceneOptions(), &rng);
         std::vector<ThreeViewPose> solutions;
         const int count = SolveScene(scene, options, &solutions);
         ASSERT_EQ(count, 1);
-        EXPECT_LT(ComputeThreeViewPoseErrors(scene.ground_truth, solutions[0]).MaxAngleDeg(), 1e-7) << static_cast<int>(recovery);
+        EXPECT_LT(ComputeThreeViewPoseErrors(scene.ground_truth, solutions[0]).MaxAngleDeg(), 1e-7)
+            << static_cast<int>(recovery);
       }
     }
   }
@@ -95,7 +99,8 @@ double MedianRotationErrorDeg(const Trifocal4ptOptions& options, int num_points,
   scene_options.pixel_noise_px = noise_px;
   scene_options.num_points = num_points;
   return testing_utils::MedianFirstSolutionRotationErrorDeg(
-      scene_options, 5, 300, [&options](const SyntheticScene& scene, std::vector<ThreeViewPose>* out) {
+      scene_options, 5, 300,
+      [&options](const SyntheticScene& scene, std::vector<ThreeViewPose>* out) {
         return SolveScene(scene, options, out);
       });
 }
@@ -114,8 +119,8 @@ TEST(Trifocal4pt, DegradesSmoothlyWithNoise) {
   for (std::size_t i = 1; i < medians.size(); ++i) EXPECT_GT(medians[i], 1.5 * medians[i - 1]);
 }
 
-// Each stage earns its place (derivations.md sections 4.3-4.5 and the polish step): least-squares recovery, then
-// enforcement, then the polish, then more triplets.
+// Each stage earns its place (derivations.md sections 4.3-4.5 and the polish step): least-squares
+// recovery, then enforcement, then the polish, then more triplets.
 TEST(Trifocal4pt, EachStageReducesTheError) {
   Trifocal4ptOptions least_squares;
   least_squares.recovery = Trifocal4ptRecovery::kLeastSquares;
@@ -131,9 +136,10 @@ TEST(Trifocal4pt, EachStageReducesTheError) {
   EXPECT_LT(MedianRotationErrorDeg(Trifocal4ptOptions(), 10, 1.0), 0.5 * default_error);
 }
 
-// Aligning by hand with the same alignment rotations gives bit-for-bit the overload's poses. Another
-// valid alignment (pitch/roll: differs by a yaw) gives the same poses noise-free; with noise the
-// normalisation |q| = 1 is not yaw-invariant, so results then differ at the noise level only.
+// Aligning by hand with the same alignment rotations gives bit-for-bit the overload's poses.
+// Another valid alignment (pitch/roll: differs by a yaw) gives the same poses noise-free; with
+// noise the normalisation |q| = 1 is not yaw-invariant, so results then differ at the noise level
+// only.
 TEST(Trifocal4pt, GravityOverloadMatchesAligningByHand) {
   std::mt19937_64 rng(6);
   for (const double noise_px : {0.0, 0.5}) {
@@ -154,11 +160,12 @@ TEST(Trifocal4pt, GravityOverloadMatchesAligningByHand) {
       for (const auto& align : {from_gravity_alignment, scene.gravity_alignment_measured}) {
         const bool same_alignment = &align == &from_gravity_alignment;
         if (!same_alignment && noise_px > 0.0) continue;
-        ASSERT_EQ(SolveTrifocal4pt(AlignRays(align[0], scene.rays[0]),
-                                   AlignRays(align[1], scene.rays[1]),
-                                   AlignRays(align[2], scene.rays[2]), &by_hand),
-                  1);
-        const ThreeViewPose unaligned = UnalignThreeViewPose(by_hand[0], align[0], align[1], align[2]);
+        ASSERT_EQ(
+            SolveTrifocal4pt(AlignRays(align[0], scene.rays[0]), AlignRays(align[1], scene.rays[1]),
+                             AlignRays(align[2], scene.rays[2]), &by_hand),
+            1);
+        const ThreeViewPose unaligned =
+            UnalignThreeViewPose(by_hand[0], align[0], align[1], align[2]);
         const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(unaligned, from_gravity[0]);
         const double tolerance = same_alignment ? 0.0 : 1e-8;
         EXPECT_LE(e.MaxRotationDeg(), tolerance);
@@ -175,11 +182,13 @@ TEST(Trifocal4pt, YawNear180Degrees) {
   scene_options.max_yaw_deg = 0.0;
   const SyntheticScene base = GenerateSyntheticScene(scene_options, &rng);
   // Rays seen by cameras turned by 180 deg about gravity: cameras 2 and 3 look back at the points
-  // through their mirror image. Instead rotate the aligned frames of 2 and 3 and map rays accordingly.
+  // through their mirror image. Instead rotate the aligned frames of 2 and 3 and map rays
+  // accordingly.
   for (const double yaw : {M_PI, M_PI - 1e-9, -M_PI + 1e-6}) {
     const Eigen::Matrix3d turn = RotationAboutY(yaw);
     std::vector<Eigen::Vector3d> x1 = AlignRays(base.gravity_alignment_true[0], base.rays[0]);
-    std::vector<Eigen::Vector3d> x2 = AlignRays(turn * base.gravity_alignment_true[1], base.rays[1]);
+    std::vector<Eigen::Vector3d> x2 =
+        AlignRays(turn * base.gravity_alignment_true[1], base.rays[1]);
     std::vector<Eigen::Vector3d> x3 = AlignRays(base.gravity_alignment_true[2], base.rays[2]);
     std::vector<ThreeViewPose> solutions;
     ASSERT_EQ(SolveTrifocal4pt(x1, x2, x3, &solutions), 1);
@@ -206,22 +215,23 @@ TEST(Trifocal4pt, MisuseThrows) {
     EXPECT_THROW(SolveTrifocal4pt(a, b, c, g, g, g, &solutions), std::invalid_argument);
   };
   bad({x[0].begin(), x[0].begin() + 3}, {x[1].begin(), x[1].begin() + 3},
-      {x[2].begin(), x[2].begin() + 3});                                   // too few
-  bad(x[0], {x[1].begin(), x[1].begin() + 3}, x[2]);                       // sizes differ
-  bad({}, {}, {});                                                         // empty
+      {x[2].begin(), x[2].begin() + 3});              // too few
+  bad(x[0], {x[1].begin(), x[1].begin() + 3}, x[2]);  // sizes differ
+  bad({}, {}, {});                                    // empty
   auto with = [&](int view, const Eigen::Vector3d& value) {
     std::array<std::vector<Eigen::Vector3d>, 3> rays = x;
     rays[view][2] = value;
     return rays;
   };
-  for (const Eigen::Vector3d& value :
-       {Eigen::Vector3d(NAN, 0, 1), Eigen::Vector3d(0, INFINITY, 1), Eigen::Vector3d::Zero().eval()}) {
+  for (const Eigen::Vector3d& value : {Eigen::Vector3d(NAN, 0, 1), Eigen::Vector3d(0, INFINITY, 1),
+                                       Eigen::Vector3d::Zero().eval()}) {
     for (int view = 0; view < 3; ++view) {
       const auto rays = with(view, value);
       bad(rays[0], rays[1], rays[2]);
     }
   }
-  for (const Eigen::Vector3d& gravity : {Eigen::Vector3d::Zero().eval(), Eigen::Vector3d(0, NAN, 0)}) {
+  for (const Eigen::Vector3d& gravity :
+       {Eigen::Vector3d::Zero().eval(), Eigen::Vector3d(0, NAN, 0)}) {
     EXPECT_THROW(SolveTrifocal4pt(x[0], x[1], x[2], g, gravity, g, &solutions),
                  std::invalid_argument);
   }

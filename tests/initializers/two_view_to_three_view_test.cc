@@ -6,9 +6,9 @@
 #include <random>
 #include <vector>
 
-#include "trigrav/initializers/essential_5pt.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/synthetic_scene.h"
+#include "trigrav/initializers/essential_5pt.h"
 
 namespace trigrav {
 namespace {

@@ -1,13 +1,13 @@
 // An outside project against the installed package: both SolveTrifocal4pt overloads here, and
 // InitializeAndRefine (trigrav::ba, which brings Ceres through find_dependency) through the
 // consumer's own shared library (plugin.cc).
-#include <iostream>
-#include <random>
-#include <vector>
-
 #include <trigrav/evaluation/pose_errors.h>
 #include <trigrav/evaluation/synthetic_scene.h>
 #include <trigrav/initializers/trifocal_4pt.h>
+
+#include <iostream>
+#include <random>
+#include <vector>
 
 #include "plugin.h"
 
@@ -16,10 +16,9 @@ int main() {
   const trigrav::SyntheticScene scene =
       trigrav::GenerateSyntheticScene(trigrav::SyntheticSceneOptions(), &rng);
   std::vector<trigrav::ThreeViewPose> with_gravity, aligned;
-  const int n1 = trigrav::SolveTrifocal4pt(scene.rays[0], scene.rays[1], scene.rays[2],
-                                           scene.gravity_in_cam_measured[0],
-                                           scene.gravity_in_cam_measured[1],
-                                           scene.gravity_in_cam_measured[2], &with_gravity);
+  const int n1 = trigrav::SolveTrifocal4pt(
+      scene.rays[0], scene.rays[1], scene.rays[2], scene.gravity_in_cam_measured[0],
+      scene.gravity_in_cam_measured[1], scene.gravity_in_cam_measured[2], &with_gravity);
   const int n2 = trigrav::SolveTrifocal4pt(scene.rays[0], scene.rays[1], scene.rays[2], &aligned);
   if (n1 != 1 || n2 != 1) return 1;
   const trigrav::ThreeViewPoseErrors e =

@@ -2,9 +2,9 @@
 // the installed libraries are position independent.
 #include "plugin.h"
 
-#include <random>
-
 #include <trigrav/trigrav.h>
+
+#include <random>
 
 double RefinedRotationErrorDeg(std::uint64_t seed) {
   std::mt19937_64 rng(seed);

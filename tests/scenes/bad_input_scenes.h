@@ -64,7 +64,7 @@ struct Input {
   RansacOptions ransac;  // EstimateThreeViewPoseRobust; InitializeAndRefine copies it
   double max_tilt_correction_deg = 0.0;  // EstimateThreeViewPoseRobust (RobustThreeViewOptions)
   InitializeAndRefineOptions refine;  // its robust.solver, robust.ransac and bundle_adjustment come
-                                     // from the fields here
+                                      // from the fields here
   ThreeViewBundleAdjustmentOptions bundle;
   ThreeViewBundleAdjustmentConfig bundle_config;
   Trifocal4ptOptions trifocal4pt;

@@ -2,13 +2,12 @@
 #ifndef TRIGRAV_TESTS_DRIVING_SCENE_H_
 #define TRIGRAV_TESTS_DRIVING_SCENE_H_
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <random>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "trigrav/initializers/camera_pose.h"
 #include "trigrav/initializers/three_view_observations.h"
@@ -39,10 +38,9 @@ inline DrivingScene MakeDrivingScene(double imu_sigma_deg, std::uint64_t seed) {
         Eigen::AngleAxisd(0.5 * k * kDegToRad, Eigen::Vector3d::UnitY()).toRotationMatrix();
     center[k] = Eigen::Vector3d(0.02 * k, 0.0, k);
     scene.observations.cameras[k] = {f, f, cx, cy};
-    const Eigen::Matrix3d imu_error =
-        (Eigen::AngleAxisd(imu_noise(rng), Eigen::Vector3d::UnitX()) *
-         Eigen::AngleAxisd(imu_noise(rng), Eigen::Vector3d::UnitZ()))
-            .toRotationMatrix();
+    const Eigen::Matrix3d imu_error = (Eigen::AngleAxisd(imu_noise(rng), Eigen::Vector3d::UnitX()) *
+                                       Eigen::AngleAxisd(imu_noise(rng), Eigen::Vector3d::UnitZ()))
+                                          .toRotationMatrix();
     scene.observations.gravity_in_cam[k] = imu_error * cam_from_world[k] * Eigen::Vector3d::UnitY();
   }
   for (int k = 1; k < 3; ++k) {

@@ -77,5 +77,4 @@ YawTiltErrorDeg SplitRotationErrorDeg(const Eigen::Matrix3d& R_gt,
   return split;
 }
 
-
 }  // namespace trigrav

@@ -1,11 +1,10 @@
 #include "trigrav/evaluation/synthetic_scene.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
-
-#include <Eigen/Geometry>
 
 #include "trigrav/initializers/gravity.h"
 
@@ -29,7 +28,9 @@ Eigen::Matrix3d CamFromWorld(double pitch, double roll, double yaw) {
 }
 
 // Draws the cameras of a scene (everything but the points).
-void DrawCameras(const SyntheticSceneOptions& options, std::mt19937_64* rng, SyntheticScene* scene) {
+void DrawCameras(const SyntheticSceneOptions& options,
+                 std::mt19937_64* rng,
+                 SyntheticScene* scene) {
   std::uniform_real_distribution<double> yaw(-options.max_yaw_deg, options.max_yaw_deg);
   std::uniform_real_distribution<double> tilt(-options.max_tilt_deg, options.max_tilt_deg);
   std::uniform_real_distribution<double> center(-options.max_center_m, options.max_center_m);
@@ -38,9 +39,10 @@ void DrawCameras(const SyntheticSceneOptions& options, std::mt19937_64* rng, Syn
     scene->yaw_rad[k] = yaw(*rng) * kDegToRad;
     scene->pitch_rad[k] = tilt(*rng) * kDegToRad;
     scene->roll_rad[k] = tilt(*rng) * kDegToRad;
-    scene->cam_from_world[k] = CamFromWorld(scene->pitch_rad[k], scene->roll_rad[k], scene->yaw_rad[k]);
-    scene->center_in_world[k] =
-        k == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(center(*rng), center(*rng), center(*rng));
+    scene->cam_from_world[k] =
+        CamFromWorld(scene->pitch_rad[k], scene->roll_rad[k], scene->yaw_rad[k]);
+    scene->center_in_world[k] = k == 0 ? Eigen::Vector3d::Zero()
+                                       : Eigen::Vector3d(center(*rng), center(*rng), center(*rng));
     scene->gravity_alignment_true[k] =
         GravityAlignmentFromPitchRoll(scene->pitch_rad[k], scene->roll_rad[k]);
     const double pitch_noise = options.imu_pitch_noise_deg * kDegToRad * unit_normal(*rng);
@@ -61,8 +63,11 @@ void DrawCameras(const SyntheticSceneOptions& options, std::mt19937_64* rng, Syn
 }
 
 // Pinhole projection of a world point into view k; false if not at least min_depth in front.
-bool Project(const SyntheticScene& scene, int k, const Eigen::Vector3d& point_in_world,
-             const SyntheticSceneOptions& options, Eigen::Vector2d* pixel) {
+bool Project(const SyntheticScene& scene,
+             int k,
+             const Eigen::Vector3d& point_in_world,
+             const SyntheticSceneOptions& options,
+             Eigen::Vector2d* pixel) {
   const Eigen::Vector3d p = scene.cam_from_world[k] * (point_in_world - scene.center_in_world[k]);
   if (!(p.z() > options.min_depth_all_views_m)) return false;
   *pixel = Eigen::Vector2d(options.focal_px * p.x() / p.z() + 0.5 * options.width_px,
@@ -85,10 +90,10 @@ bool DrawPoints(const SyntheticSceneOptions& options, std::mt19937_64* rng, Synt
   while (static_cast<int>(scene->points_in_world.size()) < options.num_points) {
     bool found = false;
     for (int draw = 0; draw < kMaxPointDraws && !found; ++draw) {
-      const Eigen::Vector3d ray1((u(*rng) - cx) / options.focal_px, (v(*rng) - cy) / options.focal_px,
-                                 1.0);
-      const Eigen::Vector3d point = scene->center_in_world[0] +
-                                    scene->cam_from_world[0].transpose() * (depth(*rng) * ray1);
+      const Eigen::Vector3d ray1((u(*rng) - cx) / options.focal_px,
+                                 (v(*rng) - cy) / options.focal_px, 1.0);
+      const Eigen::Vector3d point =
+          scene->center_in_world[0] + scene->cam_from_world[0].transpose() * (depth(*rng) * ray1);
       std::array<Eigen::Vector2d, 3> pixels;
       found = Project(*scene, 0, point, options, &pixels[0]) &&
               Project(*scene, 1, point, options, &pixels[1]) &&
@@ -109,7 +114,9 @@ bool DrawPoints(const SyntheticSceneOptions& options, std::mt19937_64* rng, Synt
 }
 
 // Replaces one random view's pixel of a random outlier_ratio fraction of the triplets.
-void InjectOutliers(const SyntheticSceneOptions& options, std::mt19937_64* rng, SyntheticScene* scene) {
+void InjectOutliers(const SyntheticSceneOptions& options,
+                    std::mt19937_64* rng,
+                    SyntheticScene* scene) {
   const int n = static_cast<int>(scene->points_in_world.size());
   scene->is_inlier.assign(n, 1);
   if (options.outlier_ratio <= 0.0) return;
@@ -148,8 +155,9 @@ ThreeViewObservations ToObservations(const SyntheticScene& scene) {
 void SyntheticSceneOptions::Check() const {
   CheckField(num_points >= 1, "num_points must be >= 1");
   CheckField(focal_px > 0.0 && std::isfinite(focal_px), "focal_px must be positive and finite");
-  CheckField(width_px > 0.0 && height_px > 0.0 && std::isfinite(width_px) && std::isfinite(height_px),
-             "image size must be positive and finite");
+  CheckField(
+      width_px > 0.0 && height_px > 0.0 && std::isfinite(width_px) && std::isfinite(height_px),
+      "image size must be positive and finite");
   CheckField(max_yaw_deg >= 0.0 && max_yaw_deg <= 180.0, "max_yaw_deg must be in [0, 180]");
   CheckField(max_tilt_deg >= 0.0 && max_tilt_deg < 90.0, "max_tilt_deg must be in [0, 90)");
   CheckField(max_center_m >= 0.0 && std::isfinite(max_center_m), "max_center_m must be >= 0");
@@ -168,7 +176,8 @@ SyntheticScene GenerateSyntheticScene(const SyntheticSceneOptions& options, std:
   options.Check();
   if (rng == nullptr) throw std::invalid_argument("trigrav: GenerateSyntheticScene: rng is null");
   SyntheticScene scene;
-  scene.camera = {options.focal_px, options.focal_px, 0.5 * options.width_px, 0.5 * options.height_px};
+  scene.camera = {options.focal_px, options.focal_px, 0.5 * options.width_px,
+                  0.5 * options.height_px};
   for (int attempt = 0; attempt < kMaxSceneDraws; ++attempt) {
     DrawCameras(options, rng, &scene);
     if (DrawPoints(options, rng, &scene)) {

@@ -3,7 +3,6 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-
 namespace trigrav {
 TrajectorySteps StepsFromTriplets(const std::vector<ThreeViewPose>& triplets,
                                   const std::vector<char>& triplet_valid) {

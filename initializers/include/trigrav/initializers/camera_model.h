@@ -20,12 +20,11 @@
 //                                                       k4 theta^8)
 // Pixels follow COLMAP's convention: the centre of the top-left pixel is (0.5, 0.5).
 
+#include <Eigen/Core>
 #include <array>
 #include <cmath>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "trigrav/initializers/three_view_observations.h"
 
@@ -138,10 +137,10 @@ void Distort(CameraModel model, const double* distortion, const T& u, const T& v
       const T theta = atan(r);
       const T theta2 = theta * theta;
       const T theta_d =
-          theta * (T(1) + theta2 * (T(distortion[0]) +
-                                    theta2 * (T(distortion[1]) +
-                                              theta2 * (T(distortion[2]) +
-                                                        theta2 * T(distortion[3])))));
+          theta *
+          (T(1) + theta2 * (T(distortion[0]) +
+                            theta2 * (T(distortion[1]) +
+                                      theta2 * (T(distortion[2]) + theta2 * T(distortion[3])))));
       *u_d = u * theta_d / r;
       *v_d = v * theta_d / r;
       return;

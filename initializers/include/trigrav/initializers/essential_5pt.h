@@ -1,9 +1,8 @@
 #ifndef TRIGRAV_INITIALIZERS_ESSENTIAL_5PT_H_
 #define TRIGRAV_INITIALIZERS_ESSENTIAL_5PT_H_
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "trigrav/initializers/camera_pose.h"
 
@@ -44,7 +43,8 @@ namespace trigrav {
 // std::invalid_argument on misuse: sizes differ, not exactly 5 correspondences, non-finite numbers,
 // zero-length rays, null output.
 int SolveEssential5pt(const std::vector<Eigen::Vector3d>& x1,
-                      const std::vector<Eigen::Vector3d>& x2, std::vector<CameraPose>* solutions);
+                      const std::vector<Eigen::Vector3d>& x2,
+                      std::vector<CameraPose>* solutions);
 
 }  // namespace trigrav
 

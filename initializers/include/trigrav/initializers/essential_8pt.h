@@ -1,9 +1,8 @@
 #ifndef TRIGRAV_INITIALIZERS_ESSENTIAL_8PT_H_
 #define TRIGRAV_INITIALIZERS_ESSENTIAL_8PT_H_
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "trigrav/initializers/camera_pose.h"
 
@@ -33,7 +32,8 @@ namespace trigrav {
 // finite pose of little meaning, never NaN. Throws std::invalid_argument on misuse: sizes differ,
 // fewer than 8 correspondences, non-finite numbers, zero-length rays, null output.
 int SolveEssential8pt(const std::vector<Eigen::Vector3d>& x1,
-                      const std::vector<Eigen::Vector3d>& x2, std::vector<CameraPose>* solutions);
+                      const std::vector<Eigen::Vector3d>& x2,
+                      std::vector<CameraPose>* solutions);
 
 }  // namespace trigrav
 

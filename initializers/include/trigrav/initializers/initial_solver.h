@@ -19,8 +19,9 @@ enum class InitialSolver {
 
 // Every initial solver, in the order above: the one list tools and tests iterate.
 inline constexpr std::array<InitialSolver, 6> kInitialSolvers = {
-    InitialSolver::kTrifocal3pt,    InitialSolver::kTrifocal3ptSextic, InitialSolver::kTrifocal4pt,
-    InitialSolver::kTrifocalLinear, InitialSolver::kEssential5pt,      InitialSolver::kEssential8pt};
+    InitialSolver::kTrifocal3pt,  InitialSolver::kTrifocal3ptSextic,
+    InitialSolver::kTrifocal4pt,  InitialSolver::kTrifocalLinear,
+    InitialSolver::kEssential5pt, InitialSolver::kEssential8pt};
 
 // "3pt", "3pt-sextic", "4pt", "7pt-linear", "5pt", "8pt". Throws std::invalid_argument for a value
 // outside the enum.

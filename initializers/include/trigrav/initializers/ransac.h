@@ -17,15 +17,15 @@ namespace trigrav {
 // Options of the generic RANSAC loop. Errors are in the estimator's unit (pixels for trigrav's
 // three-view estimators).
 struct RansacOptions {
-  double max_error = 2.0;         // inlier threshold; MSAC truncates squared errors at its square
-  double confidence = 0.9999;     // probability of drawing at least one all-inlier sample
+  double max_error = 2.0;      // inlier threshold; MSAC truncates squared errors at its square
+  double confidence = 0.9999;  // probability of drawing at least one all-inlier sample
   int min_iterations = 20;
   int max_iterations = 10000;
-  std::uint64_t seed = 0;         // same seed, same data: bit-identical result
-  // Local optimisation whenever a better model appears: `local_optimization_rounds` re-estimates, each
-  // from the inliers of the previous one, at a threshold shrinking linearly from
-  // max_error * local_optimization_threshold_multiplier to max_error (Lebeda, Matas, Chum, "Fixing
-  // the locally optimized RANSAC", BMVC 2012). Every result is scored at max_error.
+  std::uint64_t seed = 0;  // same seed, same data: bit-identical result
+  // Local optimisation whenever a better model appears: `local_optimization_rounds` re-estimates,
+  // each from the inliers of the previous one, at a threshold shrinking linearly from max_error *
+  // local_optimization_threshold_multiplier to max_error (Lebeda, Matas, Chum, "Fixing the locally
+  // optimized RANSAC", BMVC 2012). Every result is scored at max_error.
   bool local_optimization = true;
   int local_optimization_rounds = 3;
   double local_optimization_threshold_multiplier = 3.0;
@@ -36,8 +36,8 @@ struct RansacOptions {
 
 // What a RANSAC run did: the one statistics struct of every robust estimate in trigrav.
 struct RansacStatistics {
-  int num_inliers = 0;              // of the returned model
-  int iterations = 0;               // samples drawn
+  int num_inliers = 0;  // of the returned model
+  int iterations = 0;   // samples drawn
   int num_models_scored = 0;
   int num_local_optimizations = 0;
   double msac_cost = std::numeric_limits<double>::infinity();  // sum_i min(e_i^2, max_error^2)
@@ -46,9 +46,9 @@ struct RansacStatistics {
 template <typename Model>
 struct RansacReport {
   bool success = false;
-  std::string message;              // why not, when !success
+  std::string message;  // why not, when !success
   Model model{};
-  std::vector<char> inlier_mask;    // inlier_mask[i] != 0 iff error(model, i) <= max_error
+  std::vector<char> inlier_mask;  // inlier_mask[i] != 0 iff error(model, i) <= max_error
   RansacStatistics statistics;
 };
 
@@ -60,11 +60,14 @@ struct RansacReport {
 //   static constexpr int kSampleSize = s;                // minimal sample
 //   std::size_t num_data() const;
 //   // Models of a minimal sample (indices into the data, distinct); append to *models.
-//   void generate_models(const std::array<int, kSampleSize>& sample, std::vector<Model>* models) const;
-//   // Error of datum i under a model, in the unit of RansacOptions::max_error; +inf if it cannot be
+//   void generate_models(const std::array<int, kSampleSize>& sample, std::vector<Model>* models)
+//   const;
+//   // Error of datum i under a model, in the unit of RansacOptions::max_error; +inf if it cannot
+//   be
 //   // explained (e.g. behind a camera). Never NaN.
 //   double error(const Model& model, std::size_t i) const;
-//   // Local optimisation: a better model from the inlier indices (e.g. a non-minimal solver). Returns
+//   // Local optimisation: a better model from the inlier indices (e.g. a non-minimal solver).
+//   Returns
 //   // false to keep the current one.
 //   bool refine_model(const std::vector<int>& inliers, Model* model) const;
 //
@@ -90,8 +93,8 @@ void DrawSample(int n, std::mt19937_64* rng, std::array<int, S>* sample) {
     bool repeated = true;
     while (repeated) {
       (*sample)[i] = index(*rng);
-      repeated = std::find(sample->begin(), sample->begin() + i, (*sample)[i]) !=
-                 sample->begin() + i;
+      repeated =
+          std::find(sample->begin(), sample->begin() + i, (*sample)[i]) != sample->begin() + i;
     }
   }
 }
@@ -105,14 +108,17 @@ inline int RequiredIterations(double inlier_ratio, int sample_size, double confi
   if (!(denominator < 0.0)) return std::numeric_limits<int>::max();
   const double k = std::log1p(-confidence) / denominator;
   return k >= static_cast<double>(std::numeric_limits<int>::max()) ? std::numeric_limits<int>::max()
-                                                                    : static_cast<int>(std::ceil(k));
+                                                                   : static_cast<int>(std::ceil(k));
 }
 
-// MSAC cost of a model, abandoned (returning +inf) once it exceeds `bound`. Writes each datum's error
-// into *errors as it goes, so a completed pass also gives the inliers without a second pass.
+// MSAC cost of a model, abandoned (returning +inf) once it exceeds `bound`. Writes each datum's
+// error into *errors as it goes, so a completed pass also gives the inliers without a second pass.
 template <typename Estimator>
-double MsacCost(const Estimator& estimator, const typename Estimator::Model& model,
-                double squared_threshold, double bound, std::vector<double>* errors) {
+double MsacCost(const Estimator& estimator,
+                const typename Estimator::Model& model,
+                double squared_threshold,
+                double bound,
+                std::vector<double>* errors) {
   double cost = 0.0;
   const std::size_t n = estimator.num_data();
   for (std::size_t i = 0; i < n; ++i) {
@@ -124,7 +130,8 @@ double MsacCost(const Estimator& estimator, const typename Estimator::Model& mod
   return cost;
 }
 
-inline int CollectInliers(const std::vector<double>& errors, double threshold,
+inline int CollectInliers(const std::vector<double>& errors,
+                          double threshold,
                           std::vector<int>* inliers) {
   inliers->clear();
   for (std::size_t i = 0; i < errors.size(); ++i) {
@@ -196,7 +203,8 @@ RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
   };
 
   for (report.statistics.iterations = 0;
-       report.statistics.iterations < std::min(required, options.max_iterations); ++report.statistics.iterations) {
+       report.statistics.iterations < std::min(required, options.max_iterations);
+       ++report.statistics.iterations) {
     internal::DrawSample<kSampleSize>(static_cast<int>(n), &rng, &sample);
     models.clear();
     estimator.generate_models(sample, &models);
@@ -212,9 +220,8 @@ RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
               ? static_cast<double>(round) / (options.local_optimization_rounds - 1)
               : 1.0;
       const double threshold =
-          options.max_error *
-          (options.local_optimization_threshold_multiplier -
-           (options.local_optimization_threshold_multiplier - 1.0) * fraction);
+          options.max_error * (options.local_optimization_threshold_multiplier -
+                               (options.local_optimization_threshold_multiplier - 1.0) * fraction);
       if (internal::CollectInliers(*current_errors, threshold, &local_inliers) < kSampleSize) break;
       ++report.statistics.num_local_optimizations;
       if (!estimator.refine_model(local_inliers, &current)) break;

@@ -13,11 +13,11 @@ namespace trigrav {
 
 struct RobustThreeViewOptions {
   InitialSolver solver = InitialSolver::kTrifocal3pt;
-  // ransac.max_error is the inlier threshold in pixels, the same for every method (three_view_error.h
-  // says what it measures); ransac.seed makes a run reproducible. Local
-  // optimisation re-estimates from the inliers with the method's own non-minimal solver: the 4-point
-  // solver for the gravity-aware methods, the eight-point solver for the two-view ones, the linear
-  // tensor for 7pt-linear.
+  // ransac.max_error is the inlier threshold in pixels, the same for every method
+  // (three_view_error.h says what it measures); ransac.seed makes a run reproducible. Local
+  // optimisation re-estimates from the inliers with the method's own non-minimal solver: the
+  // 4-point solver for the gravity-aware methods, the eight-point solver for the two-view ones, the
+  // linear tensor for 7pt-linear.
   RansacOptions ransac;
   // Gravity-aware methods only: how far local optimisation may correct the relative tilt (pitch and
   // roll of cameras 2 and 3 relative to camera 1) that the given gravity implies, in degrees.
@@ -31,10 +31,10 @@ struct RobustThreeViewOptions {
   // corrected tilt. No effect without ransac.local_optimization.
   // kTiltCorrectionFromGravitySigma (the default) derives the bound from the gravity's uncertainty
   // where one is known: InitializeAndRefine with the gravity-prior rotation model uses
-  // 4 sqrt(2) gravity_sigma_deg (at most 45 deg; the relative tilt of two cameras with N(0, sigma^2)
-  // pitch and roll errors exceeds it with probability 3e-4); with the yaw-only model, which declares
-  // the gravity exact, and in EstimateThreeViewPoseRobust, which knows no sigma, it means 0.
-  // Otherwise throws std::invalid_argument outside [0, 90).
+  // 4 sqrt(2) gravity_sigma_deg (at most 45 deg; the relative tilt of two cameras with N(0,
+  // sigma^2) pitch and roll errors exceeds it with probability 3e-4); with the yaw-only model,
+  // which declares the gravity exact, and in EstimateThreeViewPoseRobust, which knows no sigma, it
+  // means 0. Otherwise throws std::invalid_argument outside [0, 90).
   static constexpr double kTiltCorrectionFromGravitySigma = -1.0;
   double max_tilt_correction_deg = kTiltCorrectionFromGravitySigma;
 
@@ -50,8 +50,8 @@ struct RobustThreeViewEstimate {
   RansacStatistics ransac;
 };
 
-// Robust three-view relative pose from pixel triplets with outliers: RANSAC (ransac.h) over the chosen
-// minimal solver, every method scored by the same three-view reprojection error in pixels
+// Robust three-view relative pose from pixel triplets with outliers: RANSAC (ransac.h) over the
+// chosen minimal solver, every method scored by the same three-view reprojection error in pixels
 // (three_view_error.h). Gravity is used by the gravity-aware methods only. Throws
 // std::invalid_argument for invalid observations or options; numerical failure (too few triplets,
 // no model) gives success == false with a message. So do data without parallax between views 1

@@ -1,10 +1,9 @@
 #ifndef TRIGRAV_INITIALIZERS_THREE_VIEW_ERROR_H_
 #define TRIGRAV_INITIALIZERS_THREE_VIEW_ERROR_H_
 
+#include <Eigen/Core>
 #include <array>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "trigrav/initializers/camera_pose.h"
 #include "trigrav/initializers/three_view_observations.h"
@@ -12,7 +11,8 @@
 namespace trigrav {
 
 // Multi-view midpoint: the point closest (least squares) to the rays from the centres c_k along the
-// directions d_k (any non-zero length), all in reference (camera 1) coordinates (derivations.md section 7):
+// directions d_k (any non-zero length), all in reference (camera 1) coordinates (derivations.md
+// section 7):
 //   X = (sum_k (I - d_k d_k^T))^-1 sum_k (I - d_k d_k^T) c_k.
 // Returns false (X untouched) if the rays are parallel (singular system), a direction is zero,
 // not finite or so long that its squared length overflows, or the point is not finite. Throws
@@ -21,11 +21,12 @@ bool TriangulateMidpoint(const std::array<Eigen::Vector3d, 3>& centers_in_ref,
                          const std::array<Eigen::Vector3d, 3>& directions_in_ref,
                          Eigen::Vector3d* point_in_ref);
 
-// The inlier error every trigrav robust estimator uses, whatever the method (derivations.md section 7):
-// triangulate the triplet by the multi-view midpoint in the original (unaligned) frames, reproject
-// into all three views and take the largest pixel distance; +inf if the point is behind any camera or
-// cannot be triangulated. Unlike the largest pairwise Sampson error, it sees an outlier that slides
-// along its epipolar line when the three centres are collinear (straight driving).
+// The inlier error every trigrav robust estimator uses, whatever the method (derivations.md section
+// 7): triangulate the triplet by the multi-view midpoint in the original (unaligned) frames,
+// reproject into all three views and take the largest pixel distance; +inf if the point is behind
+// any camera or cannot be triangulated. Unlike the largest pairwise Sampson error, it sees an
+// outlier that slides along its epipolar line when the three centres are collinear (straight
+// driving).
 class ThreeViewReprojectionError {
  public:
   // Throws std::invalid_argument if the observations fail ThreeViewObservations::Check().

@@ -1,10 +1,9 @@
 #ifndef TRIGRAV_INITIALIZERS_THREE_VIEW_OBSERVATIONS_H_
 #define TRIGRAV_INITIALIZERS_THREE_VIEW_OBSERVATIONS_H_
 
+#include <Eigen/Core>
 #include <array>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace trigrav {
 
@@ -25,17 +24,17 @@ struct PinholeCamera {
   bool IsValid() const;
 };
 
-// What a pipeline has for three views: intrinsics, each camera's gravity direction (down, in its own
-// frame, any positive length) and the pixels of N point triplets.
+// What a pipeline has for three views: intrinsics, each camera's gravity direction (down, in its
+// own frame, any positive length) and the pixels of N point triplets.
 struct ThreeViewObservations {
   std::array<PinholeCamera, 3> cameras;
-  std::array<Eigen::Vector3d, 3> gravity_in_cam = {Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitY(),
-                                                  Eigen::Vector3d::UnitY()};
+  std::array<Eigen::Vector3d, 3> gravity_in_cam = {
+      Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitY()};
   std::array<std::vector<Eigen::Vector2d>, 3> pixels;  // pixels[k][n]: triplet n seen in view k
 
   std::size_t size() const { return pixels[0].size(); }
-  // Throws std::invalid_argument naming the problem: sizes differ, bad intrinsics, non-finite pixels,
-  // pixels whose ray K^-1 [u v 1]^T overflows, zero or non-finite gravity.
+  // Throws std::invalid_argument naming the problem: sizes differ, bad intrinsics, non-finite
+  // pixels, pixels whose ray K^-1 [u v 1]^T overflows, zero or non-finite gravity.
   void Check() const;
 };
 

@@ -1,9 +1,8 @@
 #ifndef TRIGRAV_INITIALIZERS_TRIFOCAL_4PT_H_
 #define TRIGRAV_INITIALIZERS_TRIFOCAL_4PT_H_
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "trigrav/initializers/camera_pose.h"
 
@@ -13,20 +12,25 @@ namespace trigrav {
 // "Trifocal Tensor and Relative Pose Estimation with Known Vertical Direction", Section III-B/D).
 //
 // In gravity-aligned frames (camera y axis = gravity, down) the cameras are P_1 = [I | 0],
-// P_k = [R_y(theta_k) | -R_y(theta_k) c_k] and the trifocal tensor T_i = a_i b_4^T - a_4 b_i^T has 17
-// non-zero entries q = (Q_1..Q_17) (eqs c2-c5). Each triplet x1 <-> x2 <-> x3 gives the incidence
-// [x2]_x (sum_i x1_i T_i) [x3]_x = 0, 4 independent equations linear in q (eq. c6), so 4 triplets
-// determine q up to scale. The default pipeline follows derivations.md section 4, which corrects and
-// completes the paper, plus one polish step of trigrav's own:
+// P_k = [R_y(theta_k) | -R_y(theta_k) c_k] and the trifocal tensor T_i = a_i b_4^T - a_4 b_i^T has
+// 17 non-zero entries q = (Q_1..Q_17) (eqs c2-c5). Each triplet x1 <-> x2 <-> x3 gives the
+// incidence [x2]_x (sum_i x1_i T_i) [x3]_x = 0, 4 independent equations linear in q (eq. c6), so 4
+// triplets determine q up to scale. The default pipeline follows derivations.md section 4, which
+// corrects and completes the paper, plus one polish step of trigrav's own:
 //   1. q = least-squares null vector of the stacked 4N x 17 system (one row per x2/x3 perp pair);
-//   2. constraint enforcement (eqs f1-f7): epipoles from the null vectors of T_i, then the 6 parameters
+//   2. constraint enforcement (eqs f1-f7): epipoles from the null vectors of T_i, then the 6
+//   parameters
 //      a minimising |A E a| with |E a| = 1;
-//   3. yaws from a (derivations.md section 4.4: the paper's f2-f7 relax a1^2 + a2^2 = a3^2 and swap scales);
-//   4. translations re-solved linearly from all triplets with the yaws fixed (derivations.md section 3.4);
+//   3. yaws from a (derivations.md section 4.4: the paper's f2-f7 relax a1^2 + a2^2 = a3^2 and swap
+//   scales);
+//   4. translations re-solved linearly from all triplets with the yaws fixed (derivations.md
+//   section 3.4);
 //   5. optionally (epipole_iterations) epipoles from that pose, then steps 2-4 again;
-//   6. one Gauss-Newton step on the incidence residuals over yaws and centres jointly (not in the paper
-//      or derivations.md): noise-free it removes the rounding tail (max error 1e-8.3 -> 1e-11.6 deg over
-//      2000 scenes); at 1 px with 4 triplets it cuts the median rotation error from 3.2 to 0.95 deg;
+//   6. one Gauss-Newton step on the incidence residuals over yaws and centres jointly (not in the
+//   paper
+//      or derivations.md): noise-free it removes the rounding tail (max error 1e-8.3 -> 1e-11.6 deg
+//      over 2000 scenes); at 1 px with 4 triplets it cuts the median rotation error from 3.2 to
+//      0.95 deg;
 //   7. the common sign of the translations by a cheirality vote, scale |c_2| = 1;
 //   8. poses mapped to the original frames with the corrected eq. b4 (see gravity.h).
 // With noise, the result depends slightly on which yaw the caller's alignment rotations choose (the
@@ -37,23 +41,26 @@ namespace trigrav {
 // How the poses are read from the tensor. The paper's own variants stay selectable because the
 // experiments compare them.
 enum class Trifocal4ptRecovery {
-  kEnforced,       // constraint enforcement (f1-f7), poses read as in derivations.md section 4.3: the default
-  kLeastSquares,   // no enforcement; yaws from all 8 relations of eq. c5 by least squares (derivations.md section 4.2)
-  kPaperClosedForm,  // no enforcement; the paper's eqs c8-c11 (singular for straight or sideways motion)
+  kEnforced,  // constraint enforcement (f1-f7), poses read as in derivations.md section 4.3: the
+              // default
+  kLeastSquares,     // no enforcement; yaws from all 8 relations of eq. c5 by least squares
+                     // (derivations.md section 4.2)
+  kPaperClosedForm,  // no enforcement; the paper's eqs c8-c11 (singular for straight or sideways
+                     // motion)
 };
 
 struct Trifocal4ptOptions {
   Trifocal4ptRecovery recovery = Trifocal4ptRecovery::kEnforced;
-  // Re-solve (c_2, c_3) from all triplets with the yaws fixed (derivations.md section 4.5); cuts the
-  // translation error by about a third. The paper does not do this.
+  // Re-solve (c_2, c_3) from all triplets with the yaws fixed (derivations.md section 4.5); cuts
+  // the translation error by about a third. The paper does not do this.
   bool resolve_translations = true;
-  // With kEnforced: times to re-estimate the epipoles from the current pose and repeat enforcement and
-  // the translation solve (derivations.md section 4.3, "Optional"; not in the paper). Each pass costs about a
-  // microsecond; without polish it lowers the 1 px, 4-triplet median rotation error from 3.2 deg
-  // (0 passes) to 2.4 (3) and 1.7 (10). With the polish step it is not needed.
+  // With kEnforced: times to re-estimate the epipoles from the current pose and repeat enforcement
+  // and the translation solve (derivations.md section 4.3, "Optional"; not in the paper). Each pass
+  // costs about a microsecond; without polish it lowers the 1 px, 4-triplet median rotation error
+  // from 3.2 deg (0 passes) to 2.4 (3) and 1.7 (10). With the polish step it is not needed.
   int epipole_iterations = 0;
-  // Gauss-Newton steps on the incidence residuals over yaws and centres jointly (step 6 above; about
-  // 1.5 microseconds each). 0 gives the pipeline of derivations.md section 4.7 exactly.
+  // Gauss-Newton steps on the incidence residuals over yaws and centres jointly (step 6 above;
+  // about 1.5 microseconds each). 0 gives the pipeline of derivations.md section 4.7 exactly.
   int polish_iterations = 1;
 
   // Throws std::invalid_argument naming the first bad field: recovery not one of the enumerators,
@@ -61,29 +68,42 @@ struct Trifocal4ptOptions {
   void Check() const;
 };
 
-// Rays already in gravity-aligned frames: camera y axis = gravity (down). N >= 4 triplets, more than 4
-// are used in least squares. Writes at most one solution, scaled so that |cam2_from_cam1.Center()| = 1;
-// returns the number written (0 for numerically degenerate input). Throws std::invalid_argument on
-// misuse: sizes differ, fewer than 4 triplets, non-finite numbers, zero-length rays, null output.
-int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
-                     const std::vector<Eigen::Vector3d>& x3, std::vector<ThreeViewPose>* solutions);
+// Rays already in gravity-aligned frames: camera y axis = gravity (down). N >= 4 triplets, more
+// than 4 are used in least squares. Writes at most one solution, scaled so that
+// |cam2_from_cam1.Center()| = 1; returns the number written (0 for numerically degenerate input).
+// Throws std::invalid_argument on misuse: sizes differ, fewer than 4 triplets, non-finite numbers,
+// zero-length rays, null output.
+int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1,
+                     const std::vector<Eigen::Vector3d>& x2,
+                     const std::vector<Eigen::Vector3d>& x3,
+                     std::vector<ThreeViewPose>* solutions);
 
-// Raw rays K^-1 [u v 1]^T, plus each camera's gravity direction (down, any positive length) in its own
-// frame. Poses are returned in the original camera frames. Also throws for zero or non-finite gravity.
-int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
-                     const std::vector<Eigen::Vector3d>& x3, const Eigen::Vector3d& gravity_in_cam1,
-                     const Eigen::Vector3d& gravity_in_cam2, const Eigen::Vector3d& gravity_in_cam3,
+// Raw rays K^-1 [u v 1]^T, plus each camera's gravity direction (down, any positive length) in its
+// own frame. Poses are returned in the original camera frames. Also throws for zero or non-finite
+// gravity.
+int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1,
+                     const std::vector<Eigen::Vector3d>& x2,
+                     const std::vector<Eigen::Vector3d>& x3,
+                     const Eigen::Vector3d& gravity_in_cam1,
+                     const Eigen::Vector3d& gravity_in_cam2,
+                     const Eigen::Vector3d& gravity_in_cam3,
                      std::vector<ThreeViewPose>* solutions);
 
 // The same two entry points with explicit options (paper variants, no translation re-solve); they
 // also throw std::invalid_argument for options that fail Trifocal4ptOptions::Check().
-int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
-                     const std::vector<Eigen::Vector3d>& x3, const Trifocal4ptOptions& options,
+int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1,
+                     const std::vector<Eigen::Vector3d>& x2,
+                     const std::vector<Eigen::Vector3d>& x3,
+                     const Trifocal4ptOptions& options,
                      std::vector<ThreeViewPose>* solutions);
-int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1, const std::vector<Eigen::Vector3d>& x2,
-                     const std::vector<Eigen::Vector3d>& x3, const Eigen::Vector3d& gravity_in_cam1,
-                     const Eigen::Vector3d& gravity_in_cam2, const Eigen::Vector3d& gravity_in_cam3,
-                     const Trifocal4ptOptions& options, std::vector<ThreeViewPose>* solutions);
+int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1,
+                     const std::vector<Eigen::Vector3d>& x2,
+                     const std::vector<Eigen::Vector3d>& x3,
+                     const Eigen::Vector3d& gravity_in_cam1,
+                     const Eigen::Vector3d& gravity_in_cam2,
+                     const Eigen::Vector3d& gravity_in_cam3,
+                     const Trifocal4ptOptions& options,
+                     std::vector<ThreeViewPose>* solutions);
 
 }  // namespace trigrav
 

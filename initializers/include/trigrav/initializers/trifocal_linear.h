@@ -1,9 +1,8 @@
 #ifndef TRIGRAV_INITIALIZERS_TRIFOCAL_LINEAR_H_
 #define TRIGRAV_INITIALIZERS_TRIFOCAL_LINEAR_H_
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "trigrav/initializers/camera_pose.h"
 
@@ -37,9 +36,10 @@ namespace trigrav {
 //   4. Each E_k1 = U diag(s1, s2, 0) V^T gives two rotations U W V^T and U W^T V^T (the twisted
 //      pair).
 //   5. For each of the 2 x 2 rotation pairs the centres (c_2; c_3) are re-solved linearly from all
-//      triplets with the rotations fixed (the incidence rows of derivations.md section 3.4, valid for any R_2,
-//      R_3: least-squares null vector of 4N x 6). This gives both directions and the relative scale
-//      from the incidence itself rather than from the entries of the unconstrained tensor.
+//      triplets with the rotations fixed (the incidence rows of derivations.md section 3.4, valid
+//      for any R_2, R_3: least-squares null vector of 4N x 6). This gives both directions and the
+//      relative scale from the incidence itself rather than from the entries of the unconstrained
+//      tensor.
 //   6. Cheirality: for each pair, the sign of (c_2; c_3) that puts the most triplets in front of
 //      all three cameras (view-1 depths from pairs (1,2) and (1,3), and the depths of those points
 //      in cameras 2 and 3) is kept. The pair with the most such triplets wins (ties: smaller

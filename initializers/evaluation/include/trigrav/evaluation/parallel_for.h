@@ -1,8 +1,8 @@
 #ifndef TRIGRAV_EVALUATION_PARALLEL_FOR_H_
 #define TRIGRAV_EVALUATION_PARALLEL_FOR_H_
 
-// The tools' and tests' worker pool: independent work items (scenes, settings, chunks of trials) on a
-// few threads, each thread taking the next unclaimed index.
+// The tools' and tests' worker pool: independent work items (scenes, settings, chunks of trials) on
+// a few threads, each thread taking the next unclaimed index.
 
 #include <atomic>
 #include <cstddef>

@@ -2,8 +2,9 @@
 #define TRIGRAV_EVALUATION_POOLED_ERRORS_H_
 
 // Errors of many three-view estimates against their ground truth with views 2 and 3 pooled (the
-// paper's convention, derivations.md section 8.4): per estimate two rotation and two translation-direction
-// errors in degrees and one relative-scale error |log(s_est / s_gt)| (pose_errors.h).
+// paper's convention, derivations.md section 8.4): per estimate two rotation and two
+// translation-direction errors in degrees and one relative-scale error |log(s_est / s_gt)|
+// (pose_errors.h).
 
 #include <limits>
 #include <vector>

@@ -7,8 +7,9 @@
 
 namespace trigrav {
 
-// Error metrics of the paper (eqs e1, e2) in the atan2 forms of derivations.md section 8.1, which keep
-// full precision down to 1e-15 rad where arccos floors at about 1e-8 rad. All angles in degrees.
+// Error metrics of the paper (eqs e1, e2) in the atan2 forms of derivations.md section 8.1, which
+// keep full precision down to 1e-15 rad where arccos floors at about 1e-8 rad. All angles in
+// degrees.
 
 // Angle of R_gt R^T: atan2(|vee(M - M^T)| / 2, (trace M - 1) / 2), M = R_gt R^T.
 double RotationErrorDeg(const Eigen::Matrix3d& R_gt, const Eigen::Matrix3d& R);

@@ -399,22 +399,14 @@ int main(int argc, char** argv) {
   const std::vector<trigrav::PaperLevel> levels = trigrav::PaperLevels(FLAGS_quick, FLAGS_trials);
   const std::vector<trigrav::PaperChunk> chunks =
       trigrav::PaperChunks(levels, kExperiments, FLAGS_seed);
-  std::vector<std::vector<trigrav::LevelErrors>> chunk_errors(chunks.size());
-  std::atomic<std::size_t> done{0};
-  trigrav::ParallelFor(chunks.size(), FLAGS_threads, [&](std::size_t i) {
-    chunk_errors[i] = RunChunk(levels[chunks[i].level], chunks[i].trials, chunks[i].seed);
-    const double s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "\r%zu / %zu chunks, %.0f s", ++done, chunks.size(), s);
-  });
+  const std::vector<std::vector<trigrav::LevelErrors>> results = trigrav::RunPaperChunks(
+      levels, chunks, DirectMethods().size(), FLAGS_threads, RunChunk,
+      [&](std::size_t done, std::size_t total) {
+        const double s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::fprintf(stderr, "\r%zu / %zu chunks, %.0f s", done, total, s);
+      });
   std::fprintf(stderr, "\n");
-  // Merged in chunk order, so that the output does not depend on which thread finished first.
-  std::vector<std::vector<trigrav::LevelErrors>> results(levels.size());
-  for (std::size_t i = 0; i < chunks.size(); ++i) {
-    std::vector<trigrav::LevelErrors>& level = results[chunks[i].level];
-    level.resize(DirectMethods().size());
-    for (std::size_t m = 0; m < level.size(); ++m) level[m].Append(chunk_errors[i][m]);
-  }
 
   for (std::size_t l = 0; l < levels.size(); ++l) {
     if (levels[l].experiment == PaperExperiment::kStability) WriteStability(results[l]);

@@ -463,22 +463,14 @@ void RunSample20(std::ofstream* csv) {
   const std::vector<trigrav::PaperChunk> chunks =
       trigrav::PaperChunks(levels, {trigrav::PaperExperiment::kSample20}, FLAGS_seed);
   const auto start = std::chrono::steady_clock::now();
-  std::vector<std::vector<trigrav::LevelErrors>> chunk_errors(chunks.size());
-  std::atomic<std::size_t> done{0};
-  trigrav::ParallelFor(chunks.size(), FLAGS_threads, [&](std::size_t i) {
-    chunk_errors[i] = RunSample20Chunk(levels[chunks[i].level], chunks[i].trials, chunks[i].seed);
-    const double s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "\r%zu / %zu chunks, %.0f s", ++done, chunks.size(), s);
-  });
+  const std::vector<std::vector<trigrav::LevelErrors>> results = trigrav::RunPaperChunks(
+      levels, chunks, NumRows(), FLAGS_threads, RunSample20Chunk,
+      [&](std::size_t done, std::size_t total) {
+        const double s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::fprintf(stderr, "\r%zu / %zu chunks, %.0f s", done, total, s);
+      });
   std::fprintf(stderr, "\n");
-  // Merged in chunk order, so that the output does not depend on which thread finished first.
-  std::vector<std::vector<trigrav::LevelErrors>> results(levels.size());
-  for (std::size_t i = 0; i < chunks.size(); ++i) {
-    std::vector<trigrav::LevelErrors>& level = results[chunks[i].level];
-    level.resize(NumRows());
-    for (std::size_t r = 0; r < level.size(); ++r) level[r].Append(chunk_errors[i][r]);
-  }
 
   std::vector<std::string> methods, stages;
   for (const trigrav::InitialSolver solver : trigrav::kInitialSolvers) {

@@ -8,12 +8,14 @@
 // in PaperLevels(), so that a tool running some of the levels draws the same scenes as a run of
 // all.
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "trigrav/evaluation/parallel_for.h"
 #include "trigrav/evaluation/pooled_errors.h"
 #include "trigrav/initializers/camera_pose.h"
 
@@ -66,6 +68,33 @@ struct LevelErrors {
            bool relative_scale_known = true);
   void Append(const LevelErrors& other);
 };
+
+// Runs run_chunk(level, trials, seed), which returns one LevelErrors per method row (num_rows of
+// them), for every chunk on `threads` threads, and merges the chunks of each level in chunk order,
+// so that the result does not depend on which thread finished first. progress(done, total), if
+// given, is called after each chunk (from the worker threads, one call at a time per chunk).
+// Returns results[level][row].
+template <typename RunChunk, typename Progress>
+std::vector<std::vector<LevelErrors>> RunPaperChunks(const std::vector<PaperLevel>& levels,
+                                                     const std::vector<PaperChunk>& chunks,
+                                                     std::size_t num_rows,
+                                                     int threads,
+                                                     const RunChunk& run_chunk,
+                                                     const Progress& progress) {
+  std::vector<std::vector<LevelErrors>> chunk_errors(chunks.size());
+  std::atomic<std::size_t> done{0};
+  ParallelFor(chunks.size(), threads, [&](std::size_t i) {
+    chunk_errors[i] = run_chunk(levels[chunks[i].level], chunks[i].trials, chunks[i].seed);
+    progress(++done, chunks.size());
+  });
+  std::vector<std::vector<LevelErrors>> results(levels.size());
+  for (std::size_t i = 0; i < chunks.size(); ++i) {
+    std::vector<LevelErrors>& level = results[chunks[i].level];
+    level.resize(num_rows);
+    for (std::size_t r = 0; r < num_rows; ++r) level[r].Append(chunk_errors[i][r]);
+  }
+  return results;
+}
 
 // The accuracy CSV of the experiments (stability.csv, noise.csv, pitch.csv, roll.csv,
 // sample20.csv): one row per method (and stage) and level, 6 significant digits: the median and the

@@ -19,10 +19,18 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 DPI = 64
-# kInitialSolvers, in its order, and the paper's 4-point variant: one colour per method in every plot.
-METHODS = ["3pt", "3pt-sextic", "4pt", "7pt-linear", "5pt", "8pt", "4pt-paper"]
-STYLE = {m: dict(color=c) for m, c in zip(METHODS, plt.rcParams["axes.prop_cycle"].by_key()["color"])}
-STYLE["3pt"]["linewidth"] = STYLE["4pt"]["linewidth"] = 2.2
+PALETTE = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+
+
+def methods_and_styles(rows):
+    """The methods of a CSV in its row order (kInitialSolvers, then the paper's 4-point variant),
+    one colour each; the paper's two methods drawn thicker."""
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    styles = {m: dict(color=c) for m, c in zip(methods, PALETTE)}
+    for m in ("3pt", "4pt"):
+        if m in styles:
+            styles[m]["linewidth"] = 2.2
+    return methods, styles
 
 
 def read(folder, name):
@@ -32,12 +40,13 @@ def read(folder, name):
 
 def plot_stability(folder, out):
     rows = read(folder, "stability_histogram")
+    methods, styles = methods_and_styles(rows)
     figure, axes = plt.subplots(1, 2, figsize=(11, 3.8))
     for ax, quantity in zip(axes, ["rotation", "translation"]):
-        for method in METHODS:
+        for method in methods:
             sel = [r for r in rows if r["method"] == method and r["quantity"] == quantity]
             x = [(float(r["log10_lo"]) + float(r["log10_hi"])) / 2 for r in sel]
-            ax.plot(x, [float(r["density"]) for r in sel], label=method, **STYLE[method])
+            ax.plot(x, [float(r["density"]) for r in sel], label=method, **styles[method])
         ax.set_xlim(-16.5, -4)
         ax.set_xlabel(f"log10 {quantity} error (deg)")
         ax.set_ylabel("density")
@@ -49,11 +58,12 @@ def plot_stability(folder, out):
 
 
 def median_panels(axes, rows, x_column, title):
+    methods, styles = methods_and_styles(rows)
     for ax, (metric, name) in zip(axes, [("rotation_deg", "rotation"), ("translation_deg", "translation")]):
-        for method in METHODS:
+        for method in methods:
             sel = sorted((r for r in rows if r["method"] == method), key=lambda r: float(r[x_column]))
             ax.plot([float(r[x_column]) for r in sel], [float(r[metric]) for r in sel], marker="o",
-                    markersize=3, label=method, **STYLE[method])
+                    markersize=3, label=method, **styles[method])
         ax.set_ylabel(f"median {name} error (deg)")
         ax.set_title(title)
         ax.grid(alpha=0.3)

@@ -18,14 +18,19 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 DPI = 64
-# kInitialSolvers, in its order, and the paper's 4-point variant: one colour per method in every plot.
-METHODS = ["3pt", "3pt-sextic", "4pt", "7pt-linear", "5pt", "8pt", "4pt-paper"]
-COLOURS = dict(zip(METHODS, plt.rcParams["axes.prop_cycle"].by_key()["color"]))
+PALETTE = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+
+
+def in_csv_order(rows, column):
+    """The methods of a CSV in its row order, which follows kInitialSolvers (one colour each)."""
+    return list(dict.fromkeys(r[column] for r in rows))
+
 METRICS = [("rotation_deg", "rotation error (deg)"), ("translation_deg", "translation error (deg)")]
 
 
 def plot_sweep(rows, png_path):
-    solvers = [m for m in METHODS if any(r["solver"] == m for r in rows)]
+    solvers = in_csv_order(rows, "solver")
+    colours = dict(zip(solvers, PALETTE))
     figure, axes = plt.subplots(2, 3, figsize=(14, 7.5))
     panels = [  # (x column, rotation model, title)
         ("noise_px", "yaw-only", "image noise (0.5-2 px), exact IMU, yaw-only"),
@@ -44,9 +49,9 @@ def plot_sweep(rows, png_path):
                 selected.sort(key=lambda r: float(r[x_name]))
                 xs = [float(r[x_name]) for r in selected]
                 ax.plot(xs, [float(r["raw_" + metric]) for r in selected], "--",
-                        color=COLOURS[solver], alpha=0.7)
+                        color=colours[solver], alpha=0.7)
                 ax.plot(xs, [float(r["refined_" + metric]) for r in selected], "-o", markersize=3,
-                        color=COLOURS[solver], label=solver)
+                        color=colours[solver], label=solver)
             ax.set_yscale("log")
             ax.set_xlabel("image noise (px)" if x_name == "noise_px" else "IMU pitch/roll noise (deg)")
             ax.set_ylabel(label)
@@ -59,7 +64,10 @@ def plot_sweep(rows, png_path):
 
 
 def plot_sample20(rows, png_path):
-    solvers = [m for m in METHODS if any(r["method"] == m for r in rows)]
+    # trigrav's methods (those with a refined stage; the peers have only their raw estimate)
+    solvers = [m for m in in_csv_order(rows, "method")
+               if any(r["method"] == m and r["stage"] == "refined" for r in rows)]
+    colours = dict(zip(solvers, PALETTE))
     panels = [("noise_px", lambda r: r["pitch_deg"] == "0" and r["roll_deg"] == "0", "image noise (px)"),
               ("pitch_deg", lambda r: r["noise_px"] == "1" and r["roll_deg"] == "0", "IMU pitch noise (deg), 1 px"),
               ("roll_deg", lambda r: r["noise_px"] == "1" and r["pitch_deg"] == "0", "IMU roll noise (deg), 1 px")]
@@ -72,7 +80,7 @@ def plot_sample20(rows, png_path):
                     selected = sorted((r for r in rows if r["method"] == solver and r["stage"] == stage
                                        and keep(r)), key=lambda r: float(r[x_name]))
                     ax.plot([float(r[x_name]) for r in selected], [float(r[metric]) for r in selected],
-                            style, marker="o", markersize=3, color=COLOURS[solver],
+                            style, marker="o", markersize=3, color=colours[solver],
                             label=f"{solver} {stage}")
             ax.set_xlabel(xlabel)
             ax.set_ylabel(f"median {label}")

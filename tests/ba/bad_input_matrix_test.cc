@@ -26,6 +26,7 @@
 
 #include "bad_input_scenes.h"
 #include "trigrav/ba/initialize_and_refine.h"
+#include "trigrav/ba/refine_three_view_pose.h"
 #include "trigrav/ba/three_view_bundle_adjustment.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/initializers/essential_5pt.h"
@@ -221,6 +222,7 @@ enum Ep : int {
   kRefine3ptGravityPrior,  // its RANSAC corrects the tilt (automatic max_tilt_correction_deg)
   kBundleYawOnly,
   kBundleGravityPrior,
+  kRefineOnly,  // RefineThreeViewPose on every triplet (yaw-only)
 };
 
 using EpSet = std::uint64_t;
@@ -239,7 +241,7 @@ const EpSet kMinimalSolvers = EpRange(k4ptAligned, kTrifocalLinear) & ~Eps({k4pt
 const EpSet kExactCountSolvers = EpRange(k3ptAligned, kEssential5pt);
 const EpSet kRobust = EpRange(kRobust3pt, kRobust8pt);
 const EpSet kRefine = Eps({kRefine3ptYawOnly, kRefine5ptGravityPrior, kRefine3ptGravityPrior});
-const EpSet kBundle = Eps({kBundleYawOnly, kBundleGravityPrior});
+const EpSet kBundle = Eps({kBundleYawOnly, kBundleGravityPrior, kRefineOnly});
 
 struct EntryPoint {
   Ep id;
@@ -360,6 +362,17 @@ Result RunBundle(const Input& in) {
   const ThreeViewBundleAdjustmentSummary summary = adjuster.Solve();
   const ThreeViewPose pose = adjuster.CurrentPose();
   return ClassifyEstimate(in, summary.success, summary.message, {&pose}, pose);
+}
+
+Result RunRefineOnly(const Input& in) {
+  const std::vector<char> all(in.observations.size(), 1);
+  const ThreeViewRefinement refinement =
+      RefineThreeViewPose(in.observations, in.given_pose, all, in.bundle);
+  if (!refinement.summary.success) {
+    return refinement.summary.message.empty() ? Broken("failed without a message")
+                                              : Result{kNone, refinement.summary.message};
+  }
+  return ClassifyEstimate(in, true, "", {&refinement.pose}, refinement.pose);
 }
 
 std::function<void(Input*)> UseSolver(InitialSolver solver) {
@@ -488,6 +501,8 @@ std::vector<EntryPoint> EntryPoints() {
   add(
       kBundleGravityPrior, "ThreeViewBundleAdjuster (gravity prior)", 30, 3, bundle_reads,
       [](Input* in) { in->bundle.rotation_model = RM::kGravityPrior; }, RunBundle);
+  add(kRefineOnly, "RefineThreeViewPose (yaw-only)", 30, 3,
+      kObservations | kGivenPose | kBundleOptions, nullptr, RunRefineOnly);
   return eps;
 }
 

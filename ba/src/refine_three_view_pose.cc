@@ -10,21 +10,21 @@ ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observation
                                         const ThreeViewPose& initial,
                                         const std::vector<char>& inliers,
                                         const ThreeViewBundleAdjustmentOptions& options) {
-  observations.Check();
-  options.Check();
   if (inliers.size() != observations.size()) {
     throw std::invalid_argument("trigrav: RefineThreeViewPose: the inlier mask has " +
                                 std::to_string(inliers.size()) + " entries for " +
                                 std::to_string(observations.size()) + " triplets");
   }
+  // The adjuster checks the observations and options (once).
+  ThreeViewBundleAdjuster adjuster(
+      observations, ThreeViewBundleAdjustmentConfig::FromInlierMask(inliers), options);
   ThreeViewRefinement refinement;
   refinement.pose = initial;
+  // An empty config means all triplets to the adjuster; an empty mask means none.
   if (std::none_of(inliers.begin(), inliers.end(), [](char inlier) { return inlier != 0; })) {
     refinement.summary.message = "no inlier triplets to refine on";
     return refinement;
   }
-  ThreeViewBundleAdjuster adjuster(
-      observations, ThreeViewBundleAdjustmentConfig::FromInlierMask(inliers), options);
   if (!adjuster.Build(initial)) {
     refinement.summary.message = adjuster.message();
     return refinement;

@@ -16,6 +16,9 @@ namespace {
 constexpr double kTiltCorrectionSigmas = 4.0;
 // A sigma of degrees says the gravity is hardly known; the correction stays a tilt, below 90 deg.
 constexpr double kMaxTiltCorrectionDeg = 45.0;
+// The gravity-free estimate's own tilt error, which a gravity consistency bound must exceed
+// (derivations.md section 7.6).
+constexpr double kMinGravityInconsistencyDeg = 1.0;
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -33,6 +36,17 @@ double TiltCorrectionBoundDeg(const InitializeAndRefineOptions& options) {
   return std::min(
       kTiltCorrectionSigmas * std::sqrt(2.0) * options.bundle_adjustment.gravity_sigma_deg,
       kMaxTiltCorrectionDeg);
+}
+
+// RobustThreeViewOptions::max_gravity_inconsistency_deg with
+// kGravityConsistencyFromGravitySigma resolved (robust_three_view.h): the tilt bound's 4 sqrt(2)
+// sigma, at least kMinGravityInconsistencyDeg for the gravity-free estimate's own error.
+double GravityInconsistencyBoundDeg(const InitializeAndRefineOptions& options) {
+  const double bound = options.robust.max_gravity_inconsistency_deg;
+  if (bound != RobustThreeViewOptions::kGravityConsistencyFromGravitySigma) return bound;
+  return std::max(
+      kTiltCorrectionSigmas * std::sqrt(2.0) * options.bundle_adjustment.gravity_sigma_deg,
+      kMinGravityInconsistencyDeg);
 }
 
 }  // namespace
@@ -55,9 +69,11 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
   ThreeViewEstimate estimate;
   RobustThreeViewOptions robust = options.robust;
   robust.max_tilt_correction_deg = TiltCorrectionBoundDeg(options);
+  robust.max_gravity_inconsistency_deg = GravityInconsistencyBoundDeg(options);
   const RobustThreeViewEstimate ransac = EstimateThreeViewPoseRobust(observations, robust);
   estimate.timings.ransac_s = SecondsSince(start);
   estimate.ransac = ransac.ransac;
+  estimate.gravity = ransac.gravity;
   if (!ransac.success || !ransac.pose.IsFinite()) {
     estimate.message = ransac.success ? "initial pose is not finite" : ransac.message;
     estimate.timings.total_s = SecondsSince(start);
@@ -76,6 +92,7 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
 
   const auto refinement_start = std::chrono::steady_clock::now();
   const ThreeViewReprojectionError error(observations);
+  const double threshold = options.robust.InlierThreshold(observations);
   std::vector<char> inliers = ransac.inliers;
   for (int run = 0; run <= options.reclassification_rounds; ++run) {
     ThreeViewRefinement refinement =
@@ -100,7 +117,7 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
     std::vector<char> next(observations.size(), 0);
     int num_next = 0;
     for (std::size_t i = 0; i < next.size(); ++i) {
-      next[i] = error(prepared, i) <= options.robust.ransac.max_error ? 1 : 0;
+      next[i] = error(prepared, i) <= threshold ? 1 : 0;
       num_next += next[i];
     }
     if (next == inliers || num_next < MinimalSampleSize(options.robust.solver)) break;

@@ -72,6 +72,10 @@ DEFINE_double(confidence, 0.9999, "RANSAC confidence of an all-inlier sample.");
 DEFINE_int32(min_iterations, 100, "RANSAC minimum number of samples.");
 DEFINE_int32(max_iterations, 10000, "RANSAC maximum number of samples.");
 DEFINE_bool(local_optimization, true, "RANSAC local optimisation (LO+, ransac.h).");
+DEFINE_bool(check_gravity,
+            false,
+            "Check the gravity against a gravity-free estimate also after a success "
+            "(RobustThreeViewOptions::check_gravity_after_success).");
 DEFINE_double(imu_noise_deg,
               0.0,
               "IMU noise: sigma (deg) of each frame's pitch and roll error; 0 = exact gravity.");
@@ -218,6 +222,7 @@ std::vector<kitti::Method> TrigravMethodsFromFlags() {
   options.robust.ransac.min_iterations = FLAGS_min_iterations;
   options.robust.ransac.max_iterations = FLAGS_max_iterations;
   options.robust.ransac.local_optimization = FLAGS_local_optimization;
+  options.robust.check_gravity_after_success = FLAGS_check_gravity;
   options.reclassification_rounds = FLAGS_reclassification_rounds;
   options.bundle_adjustment.loss_scale_px = FLAGS_loss_px;
   // Ceres stops at a relative cost change of 1e-6 (library default 1e-8): on 00 and 02 the medians

@@ -14,12 +14,11 @@ namespace trigrav::peers {
 namespace {
 
 // Normalised image coordinates (K^-1 [u v 1]^T without the 1) of one view's pixels.
-std::vector<cv::Point2d> Normalized(const PinholeCamera& camera,
-                                    const std::vector<Eigen::Vector2d>& pixels) {
+std::vector<cv::Point2d> Normalized(const ThreeViewObservations& observations, int view) {
   std::vector<cv::Point2d> points;
-  points.reserve(pixels.size());
-  for (const Eigen::Vector2d& pixel : pixels) {
-    const Eigen::Vector3d ray = camera.Ray(pixel);
+  points.reserve(observations.size());
+  for (std::size_t n = 0; n < observations.size(); ++n) {
+    const Eigen::Vector3d ray = observations.Ray(view, n);
     points.emplace_back(ray.x(), ray.y());
   }
   return points;
@@ -30,11 +29,12 @@ std::vector<cv::Point2d> Normalized(const PinholeCamera& camera,
 // findEssentialMat does itself with one camera matrix, and valid when the views' intrinsics differ.
 PairEstimator OpenCvPair(int method) {
   return [method](const ThreeViewObservations& observations, int view, double threshold_px) {
-    const PinholeCamera& camera1 = observations.cameras[0];
-    const PinholeCamera& camera2 = observations.cameras[view];
-    const std::vector<cv::Point2d> points1 = Normalized(camera1, observations.pixels[0]);
-    const std::vector<cv::Point2d> points2 = Normalized(camera2, observations.pixels[view]);
-    const double focal_px = (camera1.fx + camera1.fy + camera2.fx + camera2.fy) / 4.0;
+    const Camera& camera1 = observations.cameras[0];
+    const Camera& camera2 = observations.cameras[view];
+    const std::vector<cv::Point2d> points1 = Normalized(observations, 0);
+    const std::vector<cv::Point2d> points2 = Normalized(observations, view);
+    const double focal_px =
+        (camera1.FocalX() + camera1.FocalY() + camera2.FocalX() + camera2.FocalY()) / 4.0;
     PairEstimate pair;
     cv::Mat mask;
     const cv::Mat E =

@@ -24,11 +24,12 @@ namespace {
 using SacProblem = opengv::sac_problems::relative_pose::CentralRelativePoseSacProblem;
 
 // Unit bearing vectors of one view's pixels.
-opengv::bearingVectors_t Bearings(const PinholeCamera& camera,
-                                  const std::vector<Eigen::Vector2d>& pixels) {
+opengv::bearingVectors_t Bearings(const ThreeViewObservations& observations, int view) {
   opengv::bearingVectors_t bearings;
-  bearings.reserve(pixels.size());
-  for (const Eigen::Vector2d& pixel : pixels) bearings.push_back(camera.Ray(pixel).normalized());
+  bearings.reserve(observations.size());
+  for (std::size_t n = 0; n < observations.size(); ++n) {
+    bearings.push_back(observations.Ray(view, n).normalized());
+  }
   return bearings;
 }
 
@@ -38,11 +39,12 @@ opengv::bearingVectors_t Bearings(const PinholeCamera& camera,
 PairEstimator OpenGvPair(SacProblem::Algorithm algorithm, bool refine) {
   return [algorithm, refine](const ThreeViewObservations& observations, int view,
                              double threshold_px) {
-    const PinholeCamera& camera1 = observations.cameras[0];
-    const PinholeCamera& camera2 = observations.cameras[view];
-    const opengv::bearingVectors_t bearings1 = Bearings(camera1, observations.pixels[0]);
-    const opengv::bearingVectors_t bearings2 = Bearings(camera2, observations.pixels[view]);
-    const double focal_px = (camera1.fx + camera1.fy + camera2.fx + camera2.fy) / 4.0;
+    const Camera& camera1 = observations.cameras[0];
+    const Camera& camera2 = observations.cameras[view];
+    const opengv::bearingVectors_t bearings1 = Bearings(observations, 0);
+    const opengv::bearingVectors_t bearings2 = Bearings(observations, view);
+    const double focal_px =
+        (camera1.FocalX() + camera1.FocalY() + camera2.FocalX() + camera2.FocalY()) / 4.0;
     opengv::relative_pose::CentralRelativeAdapter adapter(bearings1, bearings2);
     opengv::sac::Ransac<SacProblem> ransac;
     ransac.sac_model_ = std::make_shared<SacProblem>(adapter, algorithm, /*randomSeed=*/false);

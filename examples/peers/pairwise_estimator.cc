@@ -27,9 +27,9 @@ EstimatorResult Combine(const ThreeViewObservations& observations,
   for (std::size_t n = 0; n < observations.size(); ++n) {
     if (!pair12.inliers[n] || !pair13.inliers[n]) continue;
     result.inliers[n] = 1;
-    x1.push_back(observations.cameras[0].Ray(observations.pixels[0][n]));
-    x2.push_back(observations.cameras[1].Ray(observations.pixels[1][n]));
-    x3.push_back(observations.cameras[2].Ray(observations.pixels[2][n]));
+    x1.push_back(observations.Ray(0, n));
+    x2.push_back(observations.Ray(1, n));
+    x3.push_back(observations.Ray(2, n));
   }
   result.ransac.num_inliers = static_cast<int>(x1.size());
   const CameraPose cam2_from_cam1 = WithUnitCenter(pair12.cam_from_cam1);

@@ -46,6 +46,11 @@ constexpr int kMaxUnprojectIterations = 100;
 
 }  // namespace
 
+bool PinholeCamera::IsValid() const {
+  return fx > 0.0 && fy > 0.0 && std::isfinite(fx) && std::isfinite(fy) && std::isfinite(cx) &&
+         std::isfinite(cy);
+}
+
 const char* CameraModelName(CameraModel model) { return Info(model).name; }
 
 int NumCameraParams(CameraModel model) { return Info(model).num_params; }
@@ -99,6 +104,10 @@ void Camera::Check() const {
   }
 }
 
+bool Camera::IsPinhole() const {
+  return model == CameraModel::kSimplePinhole || model == CameraModel::kPinhole;
+}
+
 double Camera::FocalX() const { return params[internal::ParamLayout(model).fx]; }
 
 double Camera::FocalY() const { return params[internal::ParamLayout(model).fy]; }
@@ -117,6 +126,10 @@ bool Camera::Unproject(const Eigen::Vector2d& pixel, Eigen::Vector3d* ray) const
   const double fx = params[layout.fx], fy = params[layout.fy];
   const Eigen::Vector2d target((pixel.x() - params[layout.cx]) / fx,
                                (pixel.y() - params[layout.cy]) / fy);
+  if (IsPinhole()) {
+    *ray = Eigen::Vector3d(target.x(), target.y(), 1.0);
+    return true;
+  }
   const double* distortion = params.data() + layout.distortion;
   auto distort = [&](const Eigen::Vector2d& x) {
     Eigen::Vector2d d;

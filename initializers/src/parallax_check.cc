@@ -14,8 +14,7 @@ namespace {
 // rotation R maximising sum_n x2_n . R x1_n over the inliers' rays (Wahba's problem, solved by the
 // SVD of sum_n x2_n x1_n^T; rays K^-1 [u v 1]^T weighted by their lengths), each inlier counted if
 // the direction R x1_n lands within the threshold of its pixel in view 2.
-double ShareExplainedByRotation(const ThreeViewObservations& observations,
-                                const TripletData& data,
+double ShareExplainedByRotation(const TripletData& data,
                                 const std::vector<char>& inliers,
                                 double threshold) {
   Eigen::Matrix3d correlation = Eigen::Matrix3d::Zero();
@@ -36,9 +35,7 @@ double ShareExplainedByRotation(const ThreeViewObservations& observations,
   for (std::size_t n = 0; n < inliers.size(); ++n) {
     if (!inliers[n]) continue;
     const Eigen::Vector3d direction = R * data.raw[0][n];
-    if (!(direction.z() > 0.0)) continue;
-    explained += (observations.cameras[1].Project(direction) - observations.pixels[1][n]).norm() <=
-                 threshold;
+    explained += data.error.ObservationError(1, n, direction) <= threshold;
   }
   return static_cast<double>(explained) / num_inliers;
 }
@@ -49,11 +46,10 @@ constexpr double kMaxShareExplainedByRotation = 0.8;
 
 }  // namespace
 
-void RejectWithoutParallax(const ThreeViewObservations& observations,
-                           const TripletData& data,
+void RejectWithoutParallax(const TripletData& data,
                            double max_error,
                            RobustThreeViewEstimate* estimate) {
-  const double share = ShareExplainedByRotation(observations, data, estimate->inliers, max_error);
+  const double share = ShareExplainedByRotation(data, estimate->inliers, max_error);
   if (!(share > kMaxShareExplainedByRotation)) return;
   estimate->message =
       "no parallax between views 1 and 2: a rotation of camera 2 without baseline explains " +

@@ -6,16 +6,15 @@
 
 #include "robust_triplet_data.h"
 #include "trigrav/initializers/robust_three_view.h"
-#include "trigrav/initializers/three_view_observations.h"
 
 namespace trigrav {
 namespace internal {
 
 // Turns a successful estimate into a failure with the reason if its inliers show no parallax
 // between views 1 and 2 (robust_three_view.h), whatever the method: if a camera 2 without baseline
-// explains more than 80 % of them within `max_error` pixels.
-void RejectWithoutParallax(const ThreeViewObservations& observations,
-                           const TripletData& data,
+// explains more than 80 % of them within `max_error` (pixels, or degrees for
+// bearings).
+void RejectWithoutParallax(const TripletData& data,
                            double max_error,
                            RobustThreeViewEstimate* estimate);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -11,6 +12,7 @@
 #include "robust_methods.h"
 #include "robust_triplet_data.h"
 #include "tilt_correcting_refinement.h"
+#include "verdict.h"
 
 namespace trigrav {
 namespace {
@@ -87,12 +89,26 @@ std::string InitialSolverNames() {
 void RobustThreeViewOptions::Check() const {
   Info(solver);  // throws for a value outside the enum
   ransac.Check();
+  if (!(max_bearing_error_deg > 0.0 && max_bearing_error_deg < 90.0)) {
+    throw std::invalid_argument(
+        "trigrav: RobustThreeViewOptions: max_bearing_error_deg must be in (0, 90)");
+  }
+  if (!(max_gravity_inconsistency_deg == kGravityConsistencyFromGravitySigma ||
+        max_gravity_inconsistency_deg > 0.0)) {
+    throw std::invalid_argument(
+        "trigrav: RobustThreeViewOptions: max_gravity_inconsistency_deg must be > 0 or "
+        "kGravityConsistencyFromGravitySigma");
+  }
   if (!(max_tilt_correction_deg == kTiltCorrectionFromGravitySigma ||
         (max_tilt_correction_deg >= 0.0 && max_tilt_correction_deg < 90.0))) {
     throw std::invalid_argument(
         "trigrav: RobustThreeViewOptions: max_tilt_correction_deg must be in [0, 90) or "
         "kTiltCorrectionFromGravitySigma");
   }
+}
+
+double RobustThreeViewOptions::InlierThreshold(const ThreeViewObservations& observations) const {
+  return observations.HasBearings() ? max_bearing_error_deg : ransac.max_error;
 }
 
 bool ParseInitialSolver(const std::string& name, InitialSolver* solver) {
@@ -114,9 +130,18 @@ RobustThreeViewEstimate EstimateThreeViewPoseRobust(const ThreeViewObservations&
   const TripletData data(observations, max_tilt_correction_deg);
   const SolverInfo& info = Info(options.solver);
   const RunFunction run = max_tilt_correction_deg > 0.0 ? info.run_tilt_correcting : info.run;
-  RobustThreeViewEstimate estimate = run(data, options.ransac);
-  if (estimate.success)
-    internal::RejectWithoutParallax(observations, data, options.ransac.max_error, &estimate);
+  RansacOptions ransac = options.ransac;
+  ransac.max_error = options.InlierThreshold(observations);
+  RobustThreeViewEstimate estimate = run(data, ransac);
+  // Without a gravity sigma the automatic bound means no check (header).
+  const double max_gravity_inconsistency_deg =
+      options.max_gravity_inconsistency_deg == options.kGravityConsistencyFromGravitySigma
+          ? std::numeric_limits<double>::infinity()
+          : options.max_gravity_inconsistency_deg;
+  internal::JudgeEstimate(data, ransac, info.sample_size, info.uses_gravity,
+                          max_gravity_inconsistency_deg, options.check_gravity_after_success,
+                          &estimate);
+  if (estimate.success) internal::RejectWithoutParallax(data, ransac.max_error, &estimate);
   return estimate;
 }
 

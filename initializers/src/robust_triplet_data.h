@@ -21,18 +21,15 @@ namespace internal {
 using Rays = std::vector<Eigen::Vector3d>;
 using ViewRays = std::array<Rays, 3>;
 
-// What every method's estimator shares: the rays of each view, raw (K^-1 pixel) and
-// gravity-aligned, and the common inlier error.
+// What every method's estimator shares: the rays of each view, raw (unprojected pixels with z = 1,
+// or unit bearings) and gravity-aligned, and the common inlier error.
 struct TripletData {
   TripletData(const ThreeViewObservations& observations, double max_tilt_correction_deg)
       : min_cos_tilt_correction(std::cos(max_tilt_correction_deg * M_PI / 180.0)),
         error(observations) {
     for (int k = 0; k < 3; ++k) {
       alignment[k] = GravityAlignmentFromGravity(observations.gravity_in_cam[k]);
-      raw[k].reserve(observations.size());
-      for (const Eigen::Vector2d& pixel : observations.pixels[k]) {
-        raw[k].push_back(observations.cameras[k].Ray(pixel));
-      }
+      raw[k] = error.rays()[k];
       aligned[k] = AlignRays(alignment[k], raw[k]);
     }
   }

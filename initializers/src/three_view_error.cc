@@ -51,14 +51,36 @@ bool TriangulateMidpoint(const std::array<Eigen::Vector3d, 3>& centers_in_ref,
 }
 
 ThreeViewReprojectionError::ThreeViewReprojectionError(const ThreeViewObservations& observations)
-    : cameras_(observations.cameras), pixels_(observations.pixels) {
+    : bearings_(observations.HasBearings()), cameras_(observations.cameras) {
   observations.Check();
+  const std::size_t n = observations.size();
   for (int k = 0; k < 3; ++k) {
-    unit_rays_[k].reserve(pixels_[k].size());
-    for (const Eigen::Vector2d& pixel : pixels_[k]) {
-      unit_rays_[k].push_back(cameras_[k].Ray(pixel).normalized());
+    rays_[k].reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d ray = observations.Ray(k, i);
+      rays_[k].push_back(bearings_ ? ray.normalized() : ray);
     }
+    if (bearings_) {
+      bearing_errors_[k].reserve(n);
+      for (const Eigen::Vector3d& ray : rays_[k]) bearing_errors_[k].emplace_back(ray);
+    } else {
+      pixels_[k] = observations.pixels[k];
+    }
+    unit_rays_[k].reserve(n);
+    for (const Eigen::Vector3d& ray : rays_[k]) unit_rays_[k].push_back(ray.normalized());
   }
+}
+
+double ThreeViewReprojectionError::ObservationError(int k,
+                                                    std::size_t n,
+                                                    const Eigen::Vector3d& point_in_cam) const {
+  Eigen::Vector2d residual;
+  const bool seen =
+      bearings_ ? bearing_errors_[k][n](point_in_cam.data(), residual.data())
+                : PixelResidual{cameras_[k], pixels_[k][n]}(point_in_cam.data(), residual.data());
+  if (!seen) return std::numeric_limits<double>::infinity();
+  const double error = residual.norm();
+  return std::isfinite(error) ? error : std::numeric_limits<double>::infinity();
 }
 
 ThreeViewReprojectionError::PreparedPose ThreeViewReprojectionError::Prepare(
@@ -79,16 +101,13 @@ double ThreeViewReprojectionError::operator()(const PreparedPose& pose, std::siz
       pose.cam_from_ref[2].transpose() * unit_rays_[2][n]};
   Eigen::Vector3d point;
   if (!TriangulateMidpoint(pose.center_in_ref, directions, &point)) return kInfinity;
-  double largest_squared = 0.0;
+  double largest = 0.0;
   for (int k = 0; k < 3; ++k) {
     const Eigen::Vector3d p =
         k == 0 ? point : pose.cam_from_ref[k] * (point - pose.center_in_ref[k]);
-    if (!(p.z() > 0.0)) return kInfinity;
-    largest_squared =
-        std::max(largest_squared, (cameras_[k].Project(p) - pixels_[k][n]).squaredNorm());
+    largest = std::max(largest, ObservationError(k, n, p));
   }
-  const double error = std::sqrt(largest_squared);
-  return std::isfinite(error) ? error : kInfinity;
+  return largest;
 }
 
 }  // namespace trigrav

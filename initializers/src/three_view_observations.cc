@@ -1,6 +1,7 @@
 #include "trigrav/initializers/three_view_observations.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -9,42 +10,97 @@
 
 namespace trigrav {
 
-bool PinholeCamera::IsValid() const {
-  return fx > 0.0 && fy > 0.0 && std::isfinite(fx) && std::isfinite(fy) && std::isfinite(cx) &&
-         std::isfinite(cy);
+namespace {
+
+[[noreturn]] void Fail(const std::string& what) {
+  throw std::invalid_argument("trigrav: ThreeViewObservations: " + what);
+}
+
+std::string Entry(const char* name, int k, std::size_t n) {
+  return std::string(name) + "[" + std::to_string(k) + "][" + std::to_string(n) + "]";
+}
+
+void CheckCamera(const Camera& camera, int k) {
+  if (camera.FocalX() == 0.0 && camera.FocalY() == 0.0) {
+    Fail("camera " + std::to_string(k + 1) +
+         " is not set (focal length 0): give each view's intrinsics, or bearings instead of pixels");
+  }
+  try {
+    camera.Check();
+  } catch (const std::invalid_argument& error) {
+    Fail("camera " + std::to_string(k + 1) +
+         " needs positive, finite focal lengths and finite parameters (" + error.what() + ")");
+  }
+}
+
+void CheckGravity(const Eigen::Vector3d& gravity, int k) {
+  if (internal::IsUsableDirection(gravity)) return;
+  const std::string name = "gravity_in_cam[" + std::to_string(k) + "] is ";
+  if (!gravity.allFinite()) Fail(name + "not finite");
+  if (gravity.norm() > 0.0) Fail(name + "too long (its squared length overflows)");
+  Fail(name + "not set (zero): give the direction of gravity (down) in camera " +
+       std::to_string(k + 1) + "'s own frame");
+}
+
+void CheckPixels(const Camera& camera, const std::vector<Eigen::Vector2d>& pixels, int k) {
+  for (std::size_t n = 0; n < pixels.size(); ++n) {
+    if (!pixels[n].allFinite()) Fail(Entry("pixels", k, n) + " is not finite");
+    // Pinhole rays have z = 1, so they are usable unless a finite pixel far from the principal
+    // point (or a focal length near the smallest double) overflows the ray or its squared length
+    // (found by tests/fuzz).
+    Eigen::Vector3d ray;
+    if (camera.Unproject(pixels[n], &ray) && internal::IsUsableDirection(ray)) continue;
+    Fail(Entry("pixels", k, n) +
+         (camera.IsPinhole()
+              ? " is too far from the principal point for the focal length (its ray overflows)"
+              : std::string(" cannot be unprojected by the ") + CameraModelName(camera.model) +
+                    " camera (beyond the distortion's fold, or its ray overflows)"));
+  }
+}
+
+void CheckBearings(const std::vector<Eigen::Vector3d>& bearings, int k) {
+  for (std::size_t n = 0; n < bearings.size(); ++n) {
+    if (internal::IsUsableDirection(bearings[n])) continue;
+    Fail(Entry("bearings", k, n) + " is " +
+         (!bearings[n].allFinite()  ? "not finite"
+          : bearings[n].norm() > 0.0 ? "too long (its squared length overflows)"
+                                     : "zero"));
+  }
+}
+
+}  // namespace
+
+Eigen::Vector3d ThreeViewObservations::Ray(int k, std::size_t n) const {
+  if (HasBearings()) return bearings[k][n];
+  Eigen::Vector3d ray;
+  if (!cameras[k].Unproject(pixels[k][n], &ray)) {
+    ray.setConstant(std::numeric_limits<double>::quiet_NaN());
+  }
+  return ray;
 }
 
 void ThreeViewObservations::Check() const {
-  auto fail = [](const std::string& what) {
-    throw std::invalid_argument("trigrav: ThreeViewObservations: " + what);
-  };
+  const bool bearing_input = HasBearings();
   for (int k = 0; k < 3; ++k) {
-    if (!cameras[k].IsValid()) {
-      fail("camera " + std::to_string(k + 1) +
-           " needs positive, finite focal lengths and a finite principal point");
+    CheckGravity(gravity_in_cam[k], k);
+    if (bearing_input && !pixels[k].empty()) {
+      Fail("both pixels and bearings are given: give one of them");
     }
-    if (!internal::IsUsableDirection(gravity_in_cam[k])) {
-      const double g = gravity_in_cam[k].norm();
-      fail("gravity_in_cam[" + std::to_string(k) + "] is " +
-           (!gravity_in_cam[k].allFinite() ? "not finite"
-            : g > 0.0                      ? "too long (its squared length overflows)"
-                                           : "zero"));
+    const std::size_t size_k = bearing_input ? bearings[k].size() : pixels[k].size();
+    if (size_k != size()) {
+      const auto& sizes = [&](auto& v) {
+        std::ostringstream message;
+        message << (bearing_input ? "bearings" : "pixels") << " of the three views differ in size ("
+                << v[0].size() << ", " << v[1].size() << ", " << v[2].size() << ")";
+        return message.str();
+      };
+      Fail(bearing_input ? sizes(bearings) : sizes(pixels));
     }
-    if (pixels[k].size() != pixels[0].size()) {
-      std::ostringstream message;
-      message << "pixels of the three views differ in size (" << pixels[0].size() << ", "
-              << pixels[1].size() << ", " << pixels[2].size() << ")";
-      fail(message.str());
-    }
-    for (std::size_t n = 0; n < pixels[k].size(); ++n) {
-      // The ray K^-1 [u v 1]^T has z = 1, so it is usable unless a pixel is not finite or, finite
-      // but far from the principal point (or with a focal length near the smallest double),
-      // overflows the ray or its squared length (found by tests/fuzz).
-      if (internal::IsUsableDirection(cameras[k].Ray(pixels[k][n]))) continue;
-      fail("pixels[" + std::to_string(k) + "][" + std::to_string(n) + "] is " +
-           (!pixels[k][n].allFinite()
-                ? "not finite"
-                : "too far from the principal point for the focal length (its ray overflows)"));
+    if (bearing_input) {
+      CheckBearings(bearings[k], k);
+    } else {
+      CheckCamera(cameras[k], k);
+      CheckPixels(cameras[k], pixels[k], k);
     }
   }
 }

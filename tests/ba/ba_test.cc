@@ -334,7 +334,7 @@ TEST(InitializeAndRefineTest, BadInput) {
   }
   for (const double focal : {0.0, -500.0}) {
     ThreeViewObservations o = ValidObservations();
-    o.cameras[2].fx = focal;
+    o.cameras[2].params[0] = focal;
     EXPECT_THROW(InitializeAndRefine(o, options), std::invalid_argument);
   }
   {

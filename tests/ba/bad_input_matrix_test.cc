@@ -609,7 +609,7 @@ void AddNonFiniteCases(std::vector<Case>* cases) {
     }
     cases->push_back(MakeCase("zero-length or overflowing ray or gravity",
                               "zero gravity in view " + view, kGravity, kThrows,
-                              gravity + " (is zero|has zero length)",
+                              gravity + " (is zero|has zero length|is not set \\(zero\\))",
                               [=](Input* in) { in->observations.gravity_in_cam[k].setZero(); }));
     cases->push_back(MakeCase("zero-length or overflowing ray or gravity",
                               "gravity of length 1e200 in view " + view, kGravity, kThrows,
@@ -633,11 +633,11 @@ void AddNonFiniteCases(std::vector<Case>* cases) {
         cases->push_back(MakeCase(
             "bad intrinsics", std::string(field) + " = " + value_name + " in camera " + view,
             kIntrinsics, kThrows, camera_message, [=, f = std::string(field)](Input* in) {
-              PinholeCamera& camera = in->observations.cameras[k];
-              (f == "fx"   ? camera.fx
-               : f == "fy" ? camera.fy
-               : f == "cx" ? camera.cx
-                           : camera.cy) = value;
+              // PINHOLE parameters: fx, fy, cx, cy.
+              in->observations.cameras[k].params[f == "fx"   ? 0
+                                                 : f == "fy" ? 1
+                                                 : f == "cx" ? 2
+                                                             : 3] = value;
             }));
       }
     }

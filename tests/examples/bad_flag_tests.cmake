@@ -181,3 +181,10 @@ trigrav_add_bad_flag_test(initialize_and_refine_synthetic_sample20_unwritable_ou
   initialize_and_refine_synthetic
   "cannot write --output=/nonexistent_trigrav_dir/sample20.csv" --experiment=sample20
   --output=/nonexistent_trigrav_dir/sample20.csv)
+
+trigrav_add_bad_flag_test(verdict_matrix_unknown_mistake verdict_matrix
+  "--mistakes must be all or a mistake's name" --mistakes=typo)
+trigrav_add_bad_flag_test(verdict_matrix_floor_one verdict_matrix
+  "--min_inlier_ratio must be in \\[0, 1\\)" --min_inlier_ratio=1)
+trigrav_add_bad_flag_test(verdict_matrix_nan_noise verdict_matrix
+  "--noise_px must be finite and >= 0" --noise_px=nan)

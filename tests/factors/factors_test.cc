@@ -15,6 +15,7 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "trigrav/evaluation/pose_errors.h"
@@ -23,24 +24,17 @@
 #include "trigrav/factors/angle_manifold.h"
 #include "trigrav/factors/reprojection_factors.h"
 #include "trigrav/initializers/gravity.h"
+#include "typical_cameras.h"
 
 namespace trigrav {
 namespace {
-
-PinholeCamera TestCamera() {
-  PinholeCamera camera;
-  camera.fx = 500.0;
-  camera.fy = 510.0;
-  camera.cx = 320.0;
-  camera.cy = 240.0;
-  return camera;
-}
 
 // Probes a cost function at the given parameters; expects analytic == numeric derivatives.
 void ExpectGradientsMatch(const ceres::CostFunction& cost,
                           const std::vector<const ceres::Manifold*>& manifolds,
                           const std::vector<const double*>& parameters) {
   ceres::NumericDiffOptions numeric_options;
+  numeric_options.ridders_relative_initial_step_size = 1e-3;
   ceres::GradientChecker checker(&cost, &manifolds, numeric_options);
   ceres::GradientChecker::ProbeResults results;
   EXPECT_TRUE(checker.Probe(parameters.data(), 1e-7, &results)) << results.error_log;
@@ -48,16 +42,36 @@ void ExpectGradientsMatch(const ceres::CostFunction& cost,
   EXPECT_LT(results.maximum_relative_error, 1e-7);
 }
 
+// Runs `test` with the pixel residual of every camera model and with a bearing residual, each
+// observing `observed_in_cam` (pixel = its projection, bearing = its direction) shifted by a small
+// offset so that the residual is not zero.
+template <typename Test>
+void ForEveryResidual(const Eigen::Vector3d& observed_in_cam, const Test& test) {
+  const Eigen::Vector3d shifted = observed_in_cam + Eigen::Vector3d(0.03, -0.02, 0.0);
+  for (const CameraModel model : kCameraModels) {
+    const Camera camera = TypicalCamera(model);
+    SCOPED_TRACE(CameraModelName(camera.model));
+    test(PixelResidual{camera, camera.Project(shifted)});
+  }
+  SCOPED_TRACE("bearing");
+  test(BearingResidual(shifted));
+}
+
 TEST(FactorsTest, YawOnlyReprojectionGradient) {
   const Eigen::Matrix3d a_cam = GravityAlignmentFromPitchRoll(0.1, -0.05);
   const Eigen::Matrix3d a_ref = GravityAlignmentFromPitchRoll(-0.07, 0.12);
-  std::unique_ptr<ceres::CostFunction> cost(
-      YawOnlyReprojectionError::Create(TestCamera(), a_cam, a_ref, Eigen::Vector2d(300.0, 250.0)));
   const double yaw = 0.3;
   const double center[3] = {0.5, -0.2, 0.1};
   const double point[3] = {1.0, 0.5, 12.0};
-  YawManifold yaw_manifold;
-  ExpectGradientsMatch(*cost, {&yaw_manifold, nullptr, nullptr}, {&yaw, center, point});
+  const Eigen::Vector3d x = a_cam.transpose() * RotationAboutY(yaw) * a_ref *
+                            (Eigen::Vector3d(point) - Eigen::Vector3d(center));
+  ForEveryResidual(x, [&](const auto& residual) {
+    using Residual = std::decay_t<decltype(residual)>;
+    std::unique_ptr<ceres::CostFunction> cost(
+        YawOnlyReprojectionError<Residual>::Create(residual, a_cam, a_ref));
+    YawManifold yaw_manifold;
+    ExpectGradientsMatch(*cost, {&yaw_manifold, nullptr, nullptr}, {&yaw, center, point});
+  });
 }
 
 TEST(FactorsTest, YawOnlyReprojectionMatchesPoseProjection) {
@@ -67,34 +81,65 @@ TEST(FactorsTest, YawOnlyReprojectionMatchesPoseProjection) {
   const Eigen::Vector3d center(0.5, -0.2, 0.1), point(1.0, 0.5, 12.0);
   const Eigen::Matrix3d R = a_cam.transpose() * RotationAboutY(yaw) * a_ref;
   const Eigen::Vector3d x = R * (point - center);
-  const PinholeCamera camera = TestCamera();
-  const Eigen::Vector2d pixel(camera.fx * x.x() / x.z() + camera.cx,
-                              camera.fy * x.y() / x.z() + camera.cy);
-  const YawOnlyReprojectionError functor(camera, a_cam, a_ref, pixel);
+  for (const CameraModel model : kCameraModels) {
+    const Camera camera = TypicalCamera(model);
+    const YawOnlyReprojectionError<PixelResidual> functor({camera, camera.Project(x)}, a_cam,
+                                                          a_ref);
+    double residuals[2];
+    ASSERT_TRUE(functor(&yaw, center.data(), point.data(), residuals));
+    EXPECT_NEAR(residuals[0], 0.0, 1e-9) << CameraModelName(camera.model);
+    EXPECT_NEAR(residuals[1], 0.0, 1e-9) << CameraModelName(camera.model);
+  }
+  const YawOnlyReprojectionError<BearingResidual> bearing(BearingResidual(3.0 * x), a_cam, a_ref);
   double residuals[2];
-  ASSERT_TRUE(functor(&yaw, center.data(), point.data(), residuals));
-  EXPECT_NEAR(residuals[0], 0.0, 1e-9);
-  EXPECT_NEAR(residuals[1], 0.0, 1e-9);
+  ASSERT_TRUE(bearing(&yaw, center.data(), point.data(), residuals));
+  EXPECT_NEAR(residuals[0], 0.0, 1e-12);
+  EXPECT_NEAR(residuals[1], 0.0, 1e-12);
+}
+
+TEST(FactorsTest, BearingResidualIsTheAngleInDegrees) {
+  const Eigen::Vector3d b = Eigen::Vector3d(0.2, -0.4, 1.0).normalized();
+  const BearingResidual residual(5.0 * b);
+  EXPECT_NEAR((residual.frame() * residual.frame().transpose() - Eigen::Matrix3d::Identity())
+                  .norm(),
+              0.0, 1e-15);
+  const Eigen::Vector3d axis = b.cross(Eigen::Vector3d::UnitX()).normalized();
+  for (const double angle_deg : {0.01, 0.5, 10.0}) {
+    const Eigen::Vector3d x = 7.0 * (Eigen::AngleAxisd(angle_deg * M_PI / 180.0, axis) * b);
+    double r[2];
+    ASSERT_TRUE(residual(x.data(), r));
+    EXPECT_NEAR(std::hypot(r[0], r[1]), std::tan(angle_deg * M_PI / 180.0) * 180.0 / M_PI,
+                1e-12 * angle_deg);
+  }
+  const Eigen::Vector3d behind = -b;
+  double r[2];
+  EXPECT_FALSE(residual(behind.data(), r));
 }
 
 TEST(FactorsTest, ReprojectionGradient) {
-  std::unique_ptr<ceres::CostFunction> cost(
-      ReprojectionError::Create(TestCamera(), Eigen::Vector2d(310.0, 230.0)));
   Eigen::Quaterniond q(Eigen::AngleAxisd(0.2, Eigen::Vector3d(0.3, 1.0, -0.2).normalized()));
   const double quaternion[4] = {q.w(), q.x(), q.y(), q.z()};
   const double center[3] = {-0.4, 0.3, 0.2};
   const double point[3] = {-1.0, 0.8, 15.0};
-  ceres::QuaternionManifold quaternion_manifold;
-  ExpectGradientsMatch(*cost, {&quaternion_manifold, nullptr, nullptr},
-                       {quaternion, center, point});
-  ExpectGradientsMatch(*cost, {nullptr, nullptr, nullptr}, {quaternion, center, point});
+  const Eigen::Vector3d x = q * (Eigen::Vector3d(point) - Eigen::Vector3d(center));
+  ForEveryResidual(x, [&](const auto& residual) {
+    using Residual = std::decay_t<decltype(residual)>;
+    std::unique_ptr<ceres::CostFunction> cost(ReprojectionError<Residual>::Create(residual));
+    ceres::QuaternionManifold quaternion_manifold;
+    ExpectGradientsMatch(*cost, {&quaternion_manifold, nullptr, nullptr},
+                         {quaternion, center, point});
+    ExpectGradientsMatch(*cost, {nullptr, nullptr, nullptr}, {quaternion, center, point});
+  });
 }
 
 TEST(FactorsTest, ReferenceReprojectionGradient) {
-  std::unique_ptr<ceres::CostFunction> cost(
-      ReferenceReprojectionError::Create(TestCamera(), Eigen::Vector2d(310.0, 230.0)));
   const double point[3] = {-1.0, 0.8, 15.0};
-  ExpectGradientsMatch(*cost, {nullptr}, {point});
+  ForEveryResidual(Eigen::Vector3d(point), [&](const auto& residual) {
+    using Residual = std::decay_t<decltype(residual)>;
+    std::unique_ptr<ceres::CostFunction> cost(
+        ReferenceReprojectionError<Residual>::Create(residual));
+    ExpectGradientsMatch(*cost, {nullptr}, {point});
+  });
 }
 
 TEST(FactorsTest, GravityPriorGradientAndValue) {

@@ -61,8 +61,8 @@ ThreeViewObservations DecodeObservations(FuzzInput* input) {
       observations = ToObservations(*scene);
     }
   } else {
-    for (PinholeCamera& camera : observations.cameras) {
-      camera = {input->Double(), input->Double(), input->Double(), input->Double()};
+    for (Camera& camera : observations.cameras) {
+      camera = PinholeCamera{input->Double(), input->Double(), input->Double(), input->Double()};
     }
     for (Eigen::Vector3d& gravity : observations.gravity_in_cam) gravity = input->Vector3();
     const int size = input->Index(kMaxTriplets + 1);
@@ -73,9 +73,8 @@ ThreeViewObservations DecodeObservations(FuzzInput* input) {
   }
   ApplyEdits<2>(input, &observations.pixels, &observations.gravity_in_cam);
   for (int edit = input->Index(3); edit > 0; --edit) {
-    PinholeCamera& camera = observations.cameras[input->Index(3)];
-    double* const fields[] = {&camera.fx, &camera.fy, &camera.cx, &camera.cy};
-    *fields[input->Index(4)] = input->Double();
+    // PINHOLE parameters: fx, fy, cx, cy.
+    observations.cameras[input->Index(3)].params[input->Index(4)] = input->Double();
   }
   // Edits may add triplets; the harness stays small.
   for (auto& view : observations.pixels) {

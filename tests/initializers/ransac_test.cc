@@ -6,6 +6,8 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace trigrav {
@@ -75,7 +77,8 @@ TEST(Ransac, StopsAdaptively) {
   options.min_iterations = 50;
   EXPECT_EQ(Ransac(LocationEstimator(Data(900, 100, 2)), options).statistics.iterations, 50);
   options.max_iterations = 60;
-  options.max_error = 1e-9;  // nothing agrees: runs to the cap
+  options.max_error = 1e-9;  // nothing agrees: without the floor, runs to the cap
+  options.min_inlier_ratio = 0.0;
   EXPECT_EQ(Ransac(LocationEstimator(Data(300, 700, 2)), options).statistics.iterations, 60);
 }
 
@@ -102,6 +105,46 @@ TEST(Ransac, SameSeedSameResultOtherSeedOtherSamples) {
   EXPECT_NE(Ransac(estimator, options).model, a.model);
 }
 
+// Below the floor: a failure, after the samples that would have found a model at the floor (s = 1:
+// log(1e-4) / log(3/4) = 32.02, so 33 > min_iterations) instead of max_iterations.
+TEST(Ransac, InlierRatioFloorFailsAndStopsEarly) {
+  RansacOptions options;
+  options.max_error = 0.5;
+  for (const auto& [inliers, outliers] : {std::pair{200, 800}, std::pair{0, 1000}}) {
+    const RansacReport<double> report =
+        Ransac(LocationEstimator(Data(inliers, outliers, 5)), options);
+    EXPECT_FALSE(report.success);
+    EXPECT_NE(report.message.find("min_inlier_ratio"), std::string::npos) << report.message;
+    EXPECT_EQ(report.statistics.iterations, 33);
+    EXPECT_TRUE(report.inlier_mask.empty());
+    EXPECT_LT(report.statistics.num_inliers, 250);
+  }
+  EXPECT_EQ(internal::RequiredIterations(0.25, 1, 0.9999), 33);
+  // The floor off: the same data run until the few chance agreements of uniform data end the
+  // adaptive stop (pure outliers), or succeed (20 %).
+  options.min_inlier_ratio = 0.0;
+  EXPECT_GT(Ransac(LocationEstimator(Data(0, 1000, 5)), options).statistics.iterations, 300);
+  EXPECT_TRUE(Ransac(LocationEstimator(Data(200, 800, 5)), options).success);
+}
+
+// Above the floor the adaptive stop comes first, so the floor changes nothing.
+TEST(Ransac, InlierRatioFloorLeavesDataAboveItUnchanged) {
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const LocationEstimator estimator(Data(500, 500, seed));
+    RansacOptions with_floor, without_floor;
+    with_floor.max_error = without_floor.max_error = 0.5;
+    with_floor.seed = without_floor.seed = seed;
+    without_floor.min_inlier_ratio = 0.0;
+    const RansacReport<double> a = Ransac(estimator, with_floor);
+    const RansacReport<double> b = Ransac(estimator, without_floor);
+    ASSERT_TRUE(a.success);
+    EXPECT_EQ(a.model, b.model);
+    EXPECT_EQ(a.inlier_mask, b.inlier_mask);
+    EXPECT_EQ(a.statistics.iterations, b.statistics.iterations);
+    EXPECT_EQ(a.statistics.num_models_scored, b.statistics.num_models_scored);
+  }
+}
+
 TEST(Ransac, TooFewDataIsAFailureNotAnException) {
   const RansacReport<double> report = Ransac(LocationEstimator({}), RansacOptions());
   EXPECT_FALSE(report.success);
@@ -116,6 +159,9 @@ TEST(Ransac, BadOptionsThrow) {
            [](RansacOptions* o) { o->confidence = 1.0; },
            [](RansacOptions* o) { o->min_iterations = -1; },
            [](RansacOptions* o) { o->max_iterations = 0; },
+           [](RansacOptions* o) { o->min_inlier_ratio = -0.1; },
+           [](RansacOptions* o) { o->min_inlier_ratio = 1.0; },
+           [](RansacOptions* o) { o->min_inlier_ratio = NAN; },
            [](RansacOptions* o) { o->min_iterations = 10, o->max_iterations = 5; }}) {
     RansacOptions options;
     mutate(&options);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <utility>
@@ -118,6 +119,41 @@ TEST_P(RobustEveryMethod, SameSeedSameResult) {
   EXPECT_EQ(a.pose.cam3_from_cam1.t, b.pose.cam3_from_cam1.t);
 }
 
+// Data above the inlier-ratio floor draw the same samples with or without it (derivations.md
+// section 7.5), and the gravity check after a success leaves a consistent estimate as it is.
+TEST_P(RobustEveryMethod, FloorAndGravityCheckLeaveNormalDataUnchanged) {
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const ProblemWithOutliers problem = MakeProblem(200, 1.0, 0.3, seed);
+    RobustThreeViewOptions options;
+    options.solver = GetParam();
+    options.ransac.max_error = 3.0;
+    options.ransac.seed = seed;
+    const RobustThreeViewEstimate a = EstimateThreeViewPoseRobust(problem.observations, options);
+    options.max_gravity_inconsistency_deg = 3.0;
+    options.check_gravity_after_success = true;
+    const RobustThreeViewEstimate checked =
+        EstimateThreeViewPoseRobust(problem.observations, options);
+    options.ransac.min_inlier_ratio = 0.0;
+    options.max_gravity_inconsistency_deg = std::numeric_limits<double>::infinity();
+    const RobustThreeViewEstimate b = EstimateThreeViewPoseRobust(problem.observations, options);
+    ASSERT_TRUE(a.success) << a.message;
+    for (const RobustThreeViewEstimate* other : {&b, &checked}) {
+      ASSERT_TRUE(other->success) << other->message;
+      EXPECT_EQ(a.inliers, other->inliers);
+      EXPECT_EQ(a.ransac.iterations, other->ransac.iterations);
+      EXPECT_EQ(a.pose.cam2_from_cam1.R, other->pose.cam2_from_cam1.R);
+      EXPECT_EQ(a.pose.cam3_from_cam1.t, other->pose.cam3_from_cam1.t);
+    }
+    EXPECT_EQ(checked.gravity.measured, UsesGravity(GetParam()));
+    EXPECT_FALSE(a.gravity.measured);  // EstimateThreeViewPoseRobust checks no gravity by default
+  }
+  RobustThreeViewOptions options;
+  for (const double bound : {0.0, -2.0, std::nan("")}) {
+    options.max_gravity_inconsistency_deg = bound;
+    EXPECT_THROW(options.Check(), std::invalid_argument);
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(AllMethods,
                          RobustEveryMethod,
                          ::testing::ValuesIn(kInitialSolvers),
@@ -130,6 +166,7 @@ INSTANTIATE_TEST_SUITE_P(AllMethods,
 TEST(RobustThreeView, ThreePointSolverAtEightyPercentOutliers) {
   RobustThreeViewOptions options;
   options.ransac.max_error = 3.0;
+  options.ransac.min_inlier_ratio = 0.1;  // 20 % inliers: below the default floor
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     const ProblemWithOutliers problem = MakeProblem(200, 1.0, 0.8, seed);
     options.ransac.seed = seed;
@@ -150,7 +187,10 @@ TEST(RobustThreeView, RejectsEpipolarSlidingOutlierWhenDrivingStraight) {
   const double f = 500.0;
   ThreeViewObservations observations;
   std::uniform_real_distribution<double> x(-8.0, 8.0), y(-3.0, 2.0), z(10.0, 40.0);
-  for (int k = 0; k < 3; ++k) observations.cameras[k] = {f, f, 320.0, 240.0};
+  for (int k = 0; k < 3; ++k) {
+    observations.cameras[k] = PinholeCamera{f, f, 320.0, 240.0};
+    observations.gravity_in_cam[k] = Eigen::Vector3d::UnitY();
+  }
   for (int n = 0; n < 60; ++n) {
     const Eigen::Vector3d point(x(rng), y(rng), z(rng));
     for (int k = 0; k < 3; ++k) {
@@ -251,7 +291,7 @@ TEST(RobustThreeView, MisuseThrowsAndHopelessInputFails) {
   const ProblemWithOutliers problem = MakeProblem(20, 1.0, 0.0, 3);
   RobustThreeViewOptions options;
   ThreeViewObservations bad = problem.observations;
-  bad.cameras[0].fx = -1.0;
+  bad.cameras[0].params[0] = -1.0;
   EXPECT_THROW(EstimateThreeViewPoseRobust(bad, options), std::invalid_argument);
   bad = problem.observations;
   bad.pixels[1].pop_back();

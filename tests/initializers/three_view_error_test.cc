@@ -15,7 +15,7 @@ namespace {
 ThreeViewObservations ObservationsOf(const SyntheticScene& scene, double focal_px) {
   ThreeViewObservations observations;
   for (int k = 0; k < 3; ++k) {
-    observations.cameras[k] = {focal_px, focal_px, 320.0, 240.0};
+    observations.cameras[k] = PinholeCamera{focal_px, focal_px, 320.0, 240.0};
     observations.gravity_in_cam[k] = scene.gravity_in_cam_measured[k];
     observations.pixels[k] = scene.pixels[k];
   }
@@ -47,7 +47,8 @@ TEST(ThreeViewReprojectionError, ZeroForExactTripletsAndNoiseSized) {
 TEST(ThreeViewReprojectionError, InfiniteBehindACamera) {
   ThreeViewObservations observations;
   for (int k = 0; k < 3; ++k) {
-    observations.cameras[k] = {500.0, 500.0, 320.0, 240.0};
+    observations.cameras[k] = PinholeCamera{500.0, 500.0, 320.0, 240.0};
+    observations.gravity_in_cam[k] = Eigen::Vector3d::UnitY();
     observations.pixels[k] = {Eigen::Vector2d(320.0, 240.0)};
   }
   // Camera 3 turned around: the point on the common optical axis is behind it.
@@ -71,7 +72,8 @@ TEST(ThreeViewReprojectionError, SeesAnOutlierSlidingAlongItsEpipolarLine) {
   const Eigen::Vector3d point(3.0, -1.5, 20.0);
   ThreeViewObservations observations;
   for (int k = 0; k < 3; ++k) {
-    observations.cameras[k] = {f, f, 320.0, 240.0};
+    observations.cameras[k] = PinholeCamera{f, f, 320.0, 240.0};
+    observations.gravity_in_cam[k] = Eigen::Vector3d::UnitY();
     const Eigen::Vector3d p = point - Eigen::Vector3d(0.0, 0.0, k);
     observations.pixels[k] = {
         Eigen::Vector2d(f * p.x() / p.z() + 320.0, f * p.y() / p.z() + 240.0)};
@@ -95,33 +97,105 @@ TEST(TriangulateMidpoint, ParallelRaysFail) {
   EXPECT_EQ(point, Eigen::Vector3d(7, 7, 7));
 }
 
+void ExpectThrowNaming(const ThreeViewObservations& observations, const char* fragment) {
+  try {
+    observations.Check();
+    ADD_FAILURE() << "no throw for " << fragment;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
 TEST(ThreeViewObservations, CheckNamesTheProblem) {
   ThreeViewObservations observations;
-  for (int k = 0; k < 3; ++k) observations.pixels[k] = {Eigen::Vector2d(1, 2)};
+  for (int k = 0; k < 3; ++k) {
+    observations.cameras[k] = PinholeCamera{500.0, 500.0, 320.0, 240.0};
+    observations.gravity_in_cam[k] = Eigen::Vector3d::UnitY();
+    observations.pixels[k] = {Eigen::Vector2d(1, 2)};
+  }
   EXPECT_NO_THROW(observations.Check());
-  auto expect_throw = [](ThreeViewObservations o, const char* fragment) {
-    try {
-      o.Check();
-      ADD_FAILURE() << "no throw for " << fragment;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-    }
-  };
   ThreeViewObservations bad = observations;
-  bad.cameras[1].fx = 0.0;
-  expect_throw(bad, "camera 2");
+  bad.cameras[1].params[0] = 0.0;
+  ExpectThrowNaming(bad, "camera 2 needs positive");
   bad = observations;
-  bad.cameras[2].fy = NAN;
-  expect_throw(bad, "camera 3");
+  bad.cameras[2].params[1] = NAN;
+  ExpectThrowNaming(bad, "camera 3");
   bad = observations;
   bad.pixels[2].push_back(Eigen::Vector2d(1, 1));
-  expect_throw(bad, "differ in size");
+  ExpectThrowNaming(bad, "differ in size");
   bad = observations;
   bad.pixels[0][0].x() = INFINITY;
-  expect_throw(bad, "pixels[0][0]");
+  ExpectThrowNaming(bad, "pixels[0][0]");
+  bad = observations;
+  bad.gravity_in_cam[1] = Eigen::Vector3d(NAN, 1.0, 0.0);
+  ExpectThrowNaming(bad, "gravity_in_cam[1] is not finite");
+  // A pixel beyond the fold of a strong barrel distortion (r^2 > 1 / (3 |k|)).
+  bad = observations;
+  bad.cameras[1] = Camera::FromColmap("SIMPLE_RADIAL", {500.0, 320.0, 240.0, -0.5});
+  bad.pixels[1][0] = Eigen::Vector2d(320.0 + 500.0, 240.0);
+  ExpectThrowNaming(bad, "pixels[1][0] cannot be unprojected by the SIMPLE_RADIAL camera");
+}
+
+// Nothing has a usable default: a default camera or gravity is rejected, naming what to set.
+TEST(ThreeViewObservations, CheckRejectsUnsetCamerasAndGravity) {
+  ThreeViewObservations observations;
+  for (int k = 0; k < 3; ++k) {
+    observations.cameras[k] = PinholeCamera{500.0, 500.0, 320.0, 240.0};
+    observations.gravity_in_cam[k] = Eigen::Vector3d::UnitY();
+    observations.pixels[k] = {Eigen::Vector2d(1, 2)};
+  }
+  ThreeViewObservations bad = observations;
+  bad.cameras[2] = Camera();
+  ExpectThrowNaming(bad, "camera 3 is not set");
+  bad = observations;
+  bad.cameras[0] = PinholeCamera();
+  ExpectThrowNaming(bad, "camera 1 is not set");
   bad = observations;
   bad.gravity_in_cam[1] = Eigen::Vector3d::Zero();
-  expect_throw(bad, "gravity_in_cam[1]");
+  ExpectThrowNaming(bad, "gravity_in_cam[1] is not set");
+  ExpectThrowNaming(ThreeViewObservations(), "gravity_in_cam[0] is not set");
+}
+
+TEST(ThreeViewObservations, BearingsNeedNoCamerasAndAreChecked) {
+  ThreeViewObservations observations;
+  for (int k = 0; k < 3; ++k) {
+    observations.gravity_in_cam[k] = Eigen::Vector3d::UnitY();
+    observations.bearings[k] = {Eigen::Vector3d(0.1, 0.2, 1.0), Eigen::Vector3d(0.0, 0.0, -2.0)};
+  }
+  EXPECT_NO_THROW(observations.Check());
+  EXPECT_TRUE(observations.HasBearings());
+  EXPECT_EQ(observations.size(), 2u);
+  EXPECT_EQ(observations.Ray(1, 1), Eigen::Vector3d(0.0, 0.0, -2.0));
+  ThreeViewObservations bad = observations;
+  bad.bearings[2][1].setZero();
+  ExpectThrowNaming(bad, "bearings[2][1] is zero");
+  bad = observations;
+  bad.bearings[0].pop_back();
+  ExpectThrowNaming(bad, "bearings of the three views differ in size");
+  bad = observations;
+  bad.pixels[1] = {Eigen::Vector2d(1, 2), Eigen::Vector2d(3, 4)};
+  ExpectThrowNaming(bad, "both pixels and bearings");
+}
+
+// The error is in degrees for bearings: a point 0.5 deg off a bearing in view 3 gives 0.5.
+TEST(ThreeViewReprojectionError, BearingErrorIsAnAngleInDegrees) {
+  ThreeViewPose pose;  // cameras at x = 0, 1, 2 m, same orientation
+  pose.cam2_from_cam1.t = Eigen::Vector3d(-1.0, 0.0, 0.0);
+  pose.cam3_from_cam1.t = Eigen::Vector3d(-2.0, 0.0, 0.0);
+  const Eigen::Vector3d point(0.5, -0.3, 10.0);
+  ThreeViewObservations observations;
+  for (int k = 0; k < 3; ++k) {
+    observations.gravity_in_cam[k] = Eigen::Vector3d::UnitY();
+    observations.bearings[k] = {point - Eigen::Vector3d(k, 0.0, 0.0)};
+  }
+  const auto prepared = ThreeViewReprojectionError::Prepare(pose);
+  EXPECT_LT(ThreeViewReprojectionError(observations)(prepared, 0), 1e-12);
+  const ThreeViewReprojectionError error(observations);
+  const Eigen::Vector3d& bearing = observations.bearings[2][0];
+  const Eigen::Vector3d axis = bearing.cross(Eigen::Vector3d::UnitY()).normalized();
+  const Eigen::Vector3d off = Eigen::AngleAxisd(0.5 * M_PI / 180.0, axis) * bearing;
+  EXPECT_NEAR(error.ObservationError(2, 0, off), std::tan(0.5 * M_PI / 180.0) * 180.0 / M_PI,
+              1e-12);
 }
 
 }  // namespace

@@ -37,7 +37,7 @@ inline DrivingScene MakeDrivingScene(double imu_sigma_deg, std::uint64_t seed) {
     cam_from_world[k] =
         Eigen::AngleAxisd(0.5 * k * kDegToRad, Eigen::Vector3d::UnitY()).toRotationMatrix();
     center[k] = Eigen::Vector3d(0.02 * k, 0.0, k);
-    scene.observations.cameras[k] = {f, f, cx, cy};
+    scene.observations.cameras[k] = PinholeCamera{f, f, cx, cy};
     const Eigen::Matrix3d imu_error = (Eigen::AngleAxisd(imu_noise(rng), Eigen::Vector3d::UnitX()) *
                                        Eigen::AngleAxisd(imu_noise(rng), Eigen::Vector3d::UnitZ()))
                                           .toRotationMatrix();

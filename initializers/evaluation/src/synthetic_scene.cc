@@ -62,7 +62,8 @@ void DrawCameras(const SyntheticSceneOptions& options,
   }
 }
 
-// Pinhole projection of a world point into view k; false if not at least min_depth in front.
+// Projection of a world point into view k; false if not at least min_depth in front or not
+// visible through the lens.
 bool Project(const SyntheticScene& scene,
              int k,
              const Eigen::Vector3d& point_in_world,
@@ -70,8 +71,11 @@ bool Project(const SyntheticScene& scene,
              Eigen::Vector2d* pixel) {
   const Eigen::Vector3d p = scene.cam_from_world[k] * (point_in_world - scene.center_in_world[k]);
   if (!(p.z() > options.min_depth_all_views_m)) return false;
-  *pixel = Eigen::Vector2d(options.focal_px * p.x() / p.z() + 0.5 * options.width_px,
-                           options.focal_px * p.y() / p.z() + 0.5 * options.height_px);
+  *pixel = scene.camera.Project(p);
+  // Beyond the fold of a radial distortion a direction lands back inside the image, on the pixel
+  // of another direction: no lens sees it. Keep the directions the pixel unprojects to.
+  Eigen::Vector3d ray;
+  if (!scene.camera.Unproject(*pixel, &ray) || !((ray - p / p.z()).norm() < 1e-6)) return false;
   return pixel->x() >= 0.0 && pixel->x() <= options.width_px && pixel->y() >= 0.0 &&
          pixel->y() <= options.height_px;
 }
@@ -82,16 +86,14 @@ bool DrawPoints(const SyntheticSceneOptions& options, std::mt19937_64* rng, Synt
   std::uniform_real_distribution<double> v(0.0, options.height_px);
   std::uniform_real_distribution<double> depth(options.min_depth_m, options.max_depth_m);
   std::normal_distribution<double> noise(0.0, 1.0);
-  const double cx = 0.5 * options.width_px;
-  const double cy = 0.5 * options.height_px;
   scene->points_in_world.clear();
   for (auto& p : scene->pixels) p.clear();
   for (auto& r : scene->rays) r.clear();
   while (static_cast<int>(scene->points_in_world.size()) < options.num_points) {
     bool found = false;
     for (int draw = 0; draw < kMaxPointDraws && !found; ++draw) {
-      const Eigen::Vector3d ray1((u(*rng) - cx) / options.focal_px,
-                                 (v(*rng) - cy) / options.focal_px, 1.0);
+      Eigen::Vector3d ray1;
+      if (!scene->camera.Unproject(Eigen::Vector2d(u(*rng), v(*rng)), &ray1)) continue;
       const Eigen::Vector3d point =
           scene->center_in_world[0] + scene->cam_from_world[0].transpose() * (depth(*rng) * ray1);
       std::array<Eigen::Vector2d, 3> pixels;
@@ -99,13 +101,17 @@ bool DrawPoints(const SyntheticSceneOptions& options, std::mt19937_64* rng, Synt
               Project(*scene, 1, point, options, &pixels[1]) &&
               Project(*scene, 2, point, options, &pixels[2]);
       if (!found) continue;
+      std::array<Eigen::Vector2d, 3> noisy;
+      std::array<Eigen::Vector3d, 3> rays;
+      for (int k = 0; k < 3; ++k) {
+        noisy[k] = pixels[k] + options.pixel_noise_px * Eigen::Vector2d(noise(*rng), noise(*rng));
+        found = found && scene->camera.Unproject(noisy[k], &rays[k]);
+      }
+      if (!found) continue;  // noise pushed a pixel beyond the distortion's fold
       scene->points_in_world.push_back(point);
       for (int k = 0; k < 3; ++k) {
-        const Eigen::Vector2d noisy =
-            pixels[k] + options.pixel_noise_px * Eigen::Vector2d(noise(*rng), noise(*rng));
-        scene->pixels[k].push_back(noisy);
-        scene->rays[k].emplace_back((noisy.x() - cx) / options.focal_px,
-                                    (noisy.y() - cy) / options.focal_px, 1.0);
+        scene->pixels[k].push_back(noisy[k]);
+        scene->rays[k].push_back(rays[k]);
       }
     }
     if (!found) return false;
@@ -133,9 +139,9 @@ void InjectOutliers(const SyntheticSceneOptions& options,
     Eigen::Vector2d replacement;
     do {
       replacement = Eigen::Vector2d(u(*rng), v(*rng));
-    } while ((replacement - scene->pixels[k][i]).norm() < kMinShiftPx);
+    } while ((replacement - scene->pixels[k][i]).norm() < kMinShiftPx ||
+             !scene->camera.Unproject(replacement, &scene->rays[k][i]));
     scene->pixels[k][i] = replacement;
-    scene->rays[k][i] = scene->camera.Ray(replacement);
     scene->is_inlier[i] = 0;
   }
 }
@@ -148,6 +154,18 @@ ThreeViewObservations ToObservations(const SyntheticScene& scene) {
     observations.cameras[k] = scene.camera;
     observations.gravity_in_cam[k] = scene.gravity_in_cam_measured[k];
     observations.pixels[k] = scene.pixels[k];
+  }
+  return observations;
+}
+
+ThreeViewObservations ToBearingObservations(const SyntheticScene& scene) {
+  ThreeViewObservations observations;
+  for (int k = 0; k < 3; ++k) {
+    observations.gravity_in_cam[k] = scene.gravity_in_cam_measured[k];
+    observations.bearings[k].reserve(scene.rays[k].size());
+    for (const Eigen::Vector3d& ray : scene.rays[k]) {
+      observations.bearings[k].push_back(ray.normalized());
+    }
   }
   return observations;
 }
@@ -169,6 +187,9 @@ void SyntheticSceneOptions::Check() const {
              "imu_pitch_noise_deg must be >= 0");
   CheckField(imu_roll_noise_deg >= 0.0 && std::isfinite(imu_roll_noise_deg),
              "imu_roll_noise_deg must be >= 0");
+  for (const double d : opencv_distortion) {
+    CheckField(std::isfinite(d), "opencv_distortion must be finite");
+  }
   CheckField(outlier_ratio >= 0.0 && outlier_ratio <= 1.0, "outlier_ratio must be in [0, 1]");
 }
 
@@ -176,8 +197,11 @@ SyntheticScene GenerateSyntheticScene(const SyntheticSceneOptions& options, std:
   options.Check();
   if (rng == nullptr) throw std::invalid_argument("trigrav: GenerateSyntheticScene: rng is null");
   SyntheticScene scene;
-  scene.camera = {options.focal_px, options.focal_px, 0.5 * options.width_px,
-                  0.5 * options.height_px};
+  const double f = options.focal_px, cx = 0.5 * options.width_px, cy = 0.5 * options.height_px;
+  const std::array<double, 4>& d = options.opencv_distortion;
+  scene.camera = d == std::array<double, 4>{0.0, 0.0, 0.0, 0.0}
+                     ? Camera(PinholeCamera{f, f, cx, cy})
+                     : Camera(CameraModel::kOpenCV, {f, f, cx, cy, d[0], d[1], d[2], d[3]});
   for (int attempt = 0; attempt < kMaxSceneDraws; ++attempt) {
     DrawCameras(options, rng, &scene);
     if (DrawPoints(options, rng, &scene)) {

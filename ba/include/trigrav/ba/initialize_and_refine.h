@@ -22,7 +22,10 @@ struct InitializeAndRefineOptions {
   // The initial estimate: solver, RANSAC (robust.ransac.max_error is the one inlier threshold, in
   // pixels, of RANSAC and of the re-classification; robust.ransac.seed its seed) and the tilt
   // correction bound (kTiltCorrectionFromGravitySigma by default: 4 sqrt(2)
-  // bundle_adjustment.gravity_sigma_deg with the gravity-prior model, 0 with yaw-only).
+  // bundle_adjustment.gravity_sigma_deg with the gravity-prior model, 0 with yaw-only), the
+  // inlier-ratio floor (robust.ransac.min_inlier_ratio) and the gravity consistency bound
+  // (kGravityConsistencyFromGravitySigma by default: 4 sqrt(2) bundle_adjustment.gravity_sigma_deg,
+  // at least 1 deg, with either rotation model, since the sigma describes the IMU).
   RobustThreeViewOptions robust;
   bool refine = true;
   // After a refinement, the triplets are re-classified against the refined pose (same threshold)
@@ -50,6 +53,8 @@ struct ThreeViewEstimate {
   ThreeViewPose initial;
   std::vector<char> initial_inliers;
   RansacStatistics ransac;
+  // What the images say about the gravity (robust_three_view.h), also when !success.
+  GravityConsistency gravity;
   // The answer: the refined pose, or the initial one when refine is false or the refinement failed.
   ThreeViewPose refined;
   std::vector<char> inliers;  // per triplet: inliers of `refined` (those the last refinement used)
@@ -63,7 +68,8 @@ struct ThreeViewEstimate {
 };
 
 // Throws std::invalid_argument for invalid observations (ThreeViewObservations::Check) or options.
-// Numerical failure (too few triplets, no model) gives success == false with a message. If the
+// Numerical failure (too few triplets, no model, too few inliers, gravity the images contradict;
+// robust_three_view.h) gives success == false with a message. If the
 // refinement fails, `refined` is the initial pose and the message says why (success stays true).
 // The returned poses are always finite when success is true.
 ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "trigrav/initializers/camera_pose.h"
+#include "trigrav/initializers/three_view_error.h"
 #include "trigrav/initializers/three_view_observations.h"
 
 namespace trigrav {
@@ -39,7 +40,8 @@ struct ThreeViewBundleAdjustmentOptions {
     // per camera with YawManifold.
     kYawOnly,
     // R_k free (quaternion on ceres::QuaternionManifold) with a GravityPriorError per camera 2, 3
-    // weighted by (pixel_sigma_px / gravity_sigma)^2: pitch and roll may move when the IMU is off.
+    // weighted by (observation sigma / gravity_sigma)^2: pitch and roll may move when the IMU is
+    // off.
     kGravityPrior,
   };
   enum class LossType { kNone, kHuber, kCauchy };
@@ -49,7 +51,11 @@ struct ThreeViewBundleAdjustmentOptions {
   // Huber / Cauchy scale on the pixel residuals. At the RANSAC threshold (2 px) Huber only guards
   // against a stray inlier; at 1 px with 1 px noise it triples Ceres' iterations for no accuracy.
   double loss_scale_px = 2.0;
-  double pixel_sigma_px = 1.0;     // pixel noise assumed when weighting the gravity prior
+  double pixel_sigma_px = 1.0;  // pixel noise assumed when weighting the gravity prior
+  // The same two for bearing observations, in degrees (observation_residual.h); the defaults are
+  // the pixel ones at a focal length of 1150 px.
+  double loss_scale_deg = 0.1;
+  double bearing_sigma_deg = 0.05;
   double gravity_sigma_deg = 0.5;  // IMU angular sigma (gravity-prior model)
   int max_num_iterations = 50;
   int num_threads = 1;
@@ -61,6 +67,10 @@ struct ThreeViewBundleAdjustmentOptions {
   // Throws std::invalid_argument naming the first bad field (non-positive or non-finite scales and
   // sigmas, negative counts or tolerances, NaN tolerances, enum values out of range).
   void Check() const;
+  // The loss scale and the observation sigma that apply to the observations: the *_deg fields for
+  // bearings, else the *_px ones.
+  double LossScale(const ThreeViewObservations& observations) const;
+  double ObservationSigma(const ThreeViewObservations& observations) const;
 };
 
 // The one refinement summary: what a bundle adjustment did (the refined pose and points are held by
@@ -117,6 +127,7 @@ class ThreeViewBundleAdjuster {
 
  private:
   const ThreeViewObservations& observations_;
+  const ThreeViewReprojectionError error_;  // rays and visibility of every observation
   ThreeViewBundleAdjustmentConfig config_;
   ThreeViewBundleAdjustmentOptions options_;
   std::unique_ptr<ceres::Problem> problem_;

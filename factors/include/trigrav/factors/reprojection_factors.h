@@ -4,84 +4,83 @@
 // Ceres cost functions of trigrav's three-view bundle adjustment. Functor shape of Ceres
 // examples/snavely_reprojection_error.h: observations and fixed quantities as const members,
 // a templated operator() and a static Create(...) returning a new AutoDiffCostFunction (the caller,
-// usually ceres::Problem, takes ownership). Residuals are unweighted (pixels or radians): weighting
-// and robust losses are applied by the caller (ceres::LossFunction, ceres::ScaledLoss).
+// usually ceres::Problem, takes ownership). Residuals are unweighted (pixels, degrees for bearings,
+// radians for the gravity prior): weighting and robust losses are applied by the caller
+// (ceres::LossFunction, ceres::ScaledLoss).
 //
 // Conventions: camera 1 is the reference frame; a camera k has rotation R_k (x_cam = R_k (X - C_k))
 // and centre C_k in reference coordinates. Gravity alignments A_k satisfy A_k g_k = |g_k| e_y
 // (gravity.h), so the yaw-only model of camera k is R_k = A_k^T R_y(yaw_k) A_1.
 //
-// The AutoDiff instantiations live in src/reprojection_factors.cc; this header only declares.
+// The AutoDiff instantiations live in src/ (one translation unit per residual type); this header
+// only declares.
 
 #include <ceres/cost_function.h>
 
 #include <Eigen/Core>
 
-#include "trigrav/initializers/three_view_observations.h"
+#include "trigrav/initializers/observation_residual.h"
 
 namespace trigrav {
 
-// Pixel residual (2) of a point (parameter block of 3, reference frame) seen by camera k with the
+// The three reprojection factors are templated on the observation's residual
+// (trigrav/initializers/observation_residual.h): PixelResidual (a camera model and a pixel; residual
+// in pixels) or BearingResidual (a unit bearing; residual in degrees). Both are instantiated.
+
+// Residual (2) of a point (parameter block of 3, reference frame) seen by camera k with the
 // yaw-only rotation R = A_k^T R_y(yaw) A_1. Parameter blocks: yaw (1), centre C_k (3), point (3).
+template <typename Residual>
 class YawOnlyReprojectionError {
  public:
-  YawOnlyReprojectionError(const PinholeCamera& camera,
+  YawOnlyReprojectionError(const Residual& residual,
                            const Eigen::Matrix3d& alignment_cam,
-                           const Eigen::Matrix3d& alignment_ref,
-                           const Eigen::Vector2d& pixel)
-      : camera_(camera),
-        alignment_cam_(alignment_cam),
-        alignment_ref_(alignment_ref),
-        pixel_(pixel) {}
+                           const Eigen::Matrix3d& alignment_ref)
+      : residual_(residual), alignment_cam_(alignment_cam), alignment_ref_(alignment_ref) {}
 
   template <typename T>
   bool operator()(const T* yaw, const T* center, const T* point, T* residuals) const;
 
-  static ceres::CostFunction* Create(const PinholeCamera& camera,
+  static ceres::CostFunction* Create(const Residual& residual,
                                      const Eigen::Matrix3d& alignment_cam,
-                                     const Eigen::Matrix3d& alignment_ref,
-                                     const Eigen::Vector2d& pixel);
+                                     const Eigen::Matrix3d& alignment_ref);
 
  private:
-  PinholeCamera camera_;
+  Residual residual_;
   Eigen::Matrix3d alignment_cam_;
   Eigen::Matrix3d alignment_ref_;
-  Eigen::Vector2d pixel_;
 };
 
-// Pixel residual (2) of a point seen by a camera with a general rotation. Parameter blocks:
-// rotation cam_from_ref as a unit quaternion in Ceres order [w, x, y, z] (4, use
-// ceres::QuaternionManifold), centre C_k (3), point (3).
+// Residual (2) of a point seen by a camera with a general rotation. Parameter blocks: rotation
+// cam_from_ref as a unit quaternion in Ceres order [w, x, y, z] (4, use ceres::QuaternionManifold),
+// centre C_k (3), point (3).
+template <typename Residual>
 class ReprojectionError {
  public:
-  ReprojectionError(const PinholeCamera& camera, const Eigen::Vector2d& pixel)
-      : camera_(camera), pixel_(pixel) {}
+  explicit ReprojectionError(const Residual& residual) : residual_(residual) {}
 
   template <typename T>
   bool operator()(const T* quaternion, const T* center, const T* point, T* residuals) const;
 
-  static ceres::CostFunction* Create(const PinholeCamera& camera, const Eigen::Vector2d& pixel);
+  static ceres::CostFunction* Create(const Residual& residual);
 
  private:
-  PinholeCamera camera_;
-  Eigen::Vector2d pixel_;
+  Residual residual_;
 };
 
-// Pixel residual (2) of a point seen by the fixed reference camera (identity rotation, centre at
-// the origin). Parameter block: point (3).
+// Residual (2) of a point seen by the fixed reference camera (identity rotation, centre at the
+// origin). Parameter block: point (3).
+template <typename Residual>
 class ReferenceReprojectionError {
  public:
-  ReferenceReprojectionError(const PinholeCamera& camera, const Eigen::Vector2d& pixel)
-      : camera_(camera), pixel_(pixel) {}
+  explicit ReferenceReprojectionError(const Residual& residual) : residual_(residual) {}
 
   template <typename T>
   bool operator()(const T* point, T* residuals) const;
 
-  static ceres::CostFunction* Create(const PinholeCamera& camera, const Eigen::Vector2d& pixel);
+  static ceres::CostFunction* Create(const Residual& residual);
 
  private:
-  PinholeCamera camera_;
-  Eigen::Vector2d pixel_;
+  Residual residual_;
 };
 
 // Gravity prior of camera k (2 residuals, radians): the direction its rotation predicts for

@@ -26,9 +26,25 @@
 #include <string>
 #include <vector>
 
-#include "trigrav/initializers/three_view_observations.h"
-
 namespace trigrav {
+
+// Pinhole intrinsics without distortion: u = fx x/z + cx, v = fy y/z + cy. The default (all 0) is
+// unset: ThreeViewObservations::Check() rejects it.
+struct PinholeCamera {
+  double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;
+
+  // K^-1 [u v 1]^T: the ray through a pixel, z = 1.
+  Eigen::Vector3d Ray(const Eigen::Vector2d& pixel) const {
+    return Eigen::Vector3d((pixel.x() - cx) / fx, (pixel.y() - cy) / fy, 1.0);
+  }
+  // The pixel of a point (or direction) in camera coordinates, z != 0.
+  Eigen::Vector2d Project(const Eigen::Vector3d& point_in_cam) const {
+    return Eigen::Vector2d(fx * point_in_cam.x() / point_in_cam.z() + cx,
+                           fy * point_in_cam.y() / point_in_cam.z() + cy);
+  }
+  // True when fx, fy are positive and finite and cx, cy finite.
+  bool IsValid() const;
+};
 
 enum class CameraModel {
   kSimplePinhole,
@@ -55,11 +71,20 @@ int NumCameraParams(CameraModel model);
 // The largest parameter count of any model.
 inline constexpr int kMaxCameraParams = 8;
 
-// A camera of one of the models above. Fixed-size storage: copying one never allocates.
+// A camera of one of the models above. Fixed-size storage: copying one never allocates. The default
+// (PINHOLE, all parameters 0) is unset: Check() rejects it.
 struct Camera {
   CameraModel model = CameraModel::kPinhole;
   // COLMAP's parameters of `model`, the first NumCameraParams(model) entries; the rest are 0.
   std::array<double, kMaxCameraParams> params{};
+
+  Camera() = default;
+  Camera(CameraModel model, const std::array<double, kMaxCameraParams>& params)
+      : model(model), params(params) {}
+  // Implicit, so that a PinholeCamera can be given wherever a Camera is expected
+  // (observations.cameras[k] = PinholeCamera{...}): the PINHOLE camera of the same intrinsics.
+  Camera(const PinholeCamera& pinhole)  // NOLINT(google-explicit-constructor)
+      : Camera(FromPinhole(pinhole)) {}
 
   // From COLMAP's model name and parameter list (a cameras.txt line without width and height).
   // Throws std::invalid_argument naming the problem: unknown model, wrong parameter count, or
@@ -69,8 +94,10 @@ struct Camera {
   static Camera FromPinhole(const PinholeCamera& pinhole);
 
   // Throws std::invalid_argument naming the problem: a value outside the enum, non-finite
-  // parameters, focal lengths that are not positive.
+  // parameters, focal lengths that are not positive (0, the default, says "not set").
   void Check() const;
+  // True when the model has no distortion (SIMPLE_PINHOLE, PINHOLE).
+  bool IsPinhole() const;
 
   double FocalX() const;
   double FocalY() const;
@@ -83,7 +110,8 @@ struct Camera {
   Eigen::Vector2d Project(const Eigen::Vector3d& point_in_cam) const;
 
   // The ray (u, v, 1) whose projection is the pixel, by Newton's method on the distortion,
-  // converged until the reprojection of the ray is within 1e-10 px of the pixel. Returns false if
+  // converged until the reprojection of the ray is within 1e-10 px of the pixel (pinhole models:
+  // K^-1 [u v 1]^T directly, as PinholeCamera::Ray). Returns false if
   // the pixel is not finite or the iteration does not converge (a pixel outside the model's image
   // of the front hemisphere, e.g. beyond a radial model's fold).
   bool Unproject(const Eigen::Vector2d& pixel, Eigen::Vector3d* ray) const;
@@ -174,6 +202,12 @@ template <typename T>
 bool Camera::Project(const T* point_in_cam, T* pixel) const {
   if (!(point_in_cam[2] > T(0))) return false;
   const internal::CameraParamLayout layout = internal::ParamLayout(model);
+  if (model == CameraModel::kSimplePinhole || model == CameraModel::kPinhole) {
+    // PinholeCamera::Project's arithmetic, to the last bit.
+    pixel[0] = T(params[layout.fx]) * point_in_cam[0] / point_in_cam[2] + T(params[layout.cx]);
+    pixel[1] = T(params[layout.fy]) * point_in_cam[1] / point_in_cam[2] + T(params[layout.cy]);
+    return true;
+  }
   const T u = point_in_cam[0] / point_in_cam[2];
   const T v = point_in_cam[1] / point_in_cam[2];
   T u_d, v_d;

@@ -1,6 +1,7 @@
 #ifndef TRIGRAV_INITIALIZERS_ROBUST_THREE_VIEW_H_
 #define TRIGRAV_INITIALIZERS_ROBUST_THREE_VIEW_H_
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -18,7 +19,25 @@ struct RobustThreeViewOptions {
   // optimisation re-estimates from the inliers with the method's own non-minimal solver: the
   // 4-point solver for the gravity-aware methods, the eight-point solver for the two-view ones, the
   // linear tensor for 7pt-linear.
+  // Choosing ransac.max_error (default 2 px): the minimal models are upright, so a tilt error of
+  // the IMU moves the true inliers by about f sigma_tilt pixels (f in px, sigma_tilt the per-frame
+  // pitch / roll sigma in radians; 0.1 deg at f = 719 px: 1.25 px) on top of the pixel noise
+  // sigma_px. Measured (examples/initialize_and_refine/README.md, "Choosing the threshold"):
+  //  - upright RANSAC (max_tilt_correction_deg = 0; the yaw-only model): 3 sqrt(sigma_px^2 +
+  //    (f sigma_tilt)^2). KITTI 00 with 0.1 deg of IMU noise: 3pt RANSAC loses the true motion in
+  //    24 of 118 triplets at 1.5 px (3 sigma_px), 9 at 3 px, 6 at 4 px (the rule). Above
+  //    f sigma_tilt ~ 3 px no threshold helps (53-96 of 118 lost at 1-6 px for 0.25 deg): correct
+  //    the tilt instead;
+  //  - tilt-correcting RANSAC (InitializeAndRefine with the gravity-prior model): 3 sigma_px is
+  //    enough (KITTI: the same errors from 1 to 6 px at 0-0.25 deg; synthetic, f = 500 px: median
+  //    errors within 7 % (rotation) and 11 % (translation) of the best threshold, within 3 % at
+  //    sqrt((3 sigma_px)^2 + (1.4 f sigma_tilt)^2)).
+  // Too large a threshold lets a rotation without baseline explain the inliers: at f = 500 px up to
+  // 1 % of synthetic scenes fail as "no parallax" at 12 px, 3.5 % at 24 px.
   RansacOptions ransac;
+  // The inlier threshold for bearing observations (ThreeViewObservations::bearings), in degrees,
+  // in place of ransac.max_error (pixels); the default is 2 px at a focal length of 1150 px.
+  double max_bearing_error_deg = 0.1;
   // Gravity-aware methods only: how far local optimisation may correct the relative tilt (pitch and
   // roll of cameras 2 and 3 relative to camera 1) that the given gravity implies, in degrees.
   // 0 (exact gravity): every model is upright, local optimisation included. > 0 (gravity from an
@@ -37,9 +56,55 @@ struct RobustThreeViewOptions {
   // means 0. Otherwise throws std::invalid_argument outside [0, 90).
   static constexpr double kTiltCorrectionFromGravitySigma = -1.0;
   double max_tilt_correction_deg = kTiltCorrectionFromGravitySigma;
+  // Gravity-aware methods only: how far (deg) a camera's gravity may be from what the images say
+  // before the estimate is a failure (derivations.md section 7.6). A gravity-free robust estimate
+  // (5pt, the same threshold, seed and inlier-ratio floor, at most as many samples as the
+  // gravity-aware floor needs) is compared with the gravity: the angle between R_k g_1 and g_k for
+  // the pairs (1,2), (1,3) and between R_3 R_2^T g_2 and g_3 for (2,3), and the rotation between
+  // the two estimates of each view, all go into RobustThreeViewEstimate::gravity. When the
+  // gravity-free estimate explains more triplets than the gravity-aware one, a pair beyond this
+  // bound makes the call fail with a message naming the camera, the angle and the likely cause, and
+  // so does a rotation disagreement beyond it (gravity noisier than the model assumes). +infinity
+  // skips the check and its cost. kGravityConsistencyFromGravitySigma (the default):
+  // InitializeAndRefine uses 4 sqrt(2) bundle_adjustment.gravity_sigma_deg, at least 1 deg (the
+  // relative tilt of two cameras exceeds 4 sqrt(2) sigma with probability 3e-4; the 1 deg covers
+  // the gravity-free estimate's own error); EstimateThreeViewPoseRobust, which knows no sigma,
+  // skips the check. Otherwise throws std::invalid_argument unless > 0.
+  static constexpr double kGravityConsistencyFromGravitySigma = -1.0;
+  double max_gravity_inconsistency_deg = kGravityConsistencyFromGravitySigma;
+  // When the gravity check runs: false (the default), only when the gravity-aware estimate fails
+  // (below the floor), to name the cause; true, also after a success, which can then turn into a
+  // failure. The gravity-free estimate is dearer than the gravity-aware RANSAC (verdict_matrix, 600
+  // synthetic triplets: 36 instead of 21 ms per InitializeAndRefine call; KITTI 00, 3pt raw: 85
+  // instead of 8 ms per triplet), so it is off by default and results after a success are those
+  // of the gravity-aware estimate alone. On: 0 of 30 correct synthetic inputs and, on KITTI 00 and
+  // 02 with exact gravity, 1 of 596 triplets rejected (frame 267 of 00, whose 3pt pose was 25-30
+  // deg off in translation, the five-point one 1 deg; with the gravity-prior model also frame
+  // 266, 58 deg off); turn it on where a wrong pose costs more than the time.
+  bool check_gravity_after_success = false;
 
   // Throws std::invalid_argument naming the first bad field.
   void Check() const;
+  // The threshold that applies to the observations: max_bearing_error_deg for bearings, else
+  // ransac.max_error.
+  double InlierThreshold(const ThreeViewObservations& observations) const;
+};
+
+// What the images say about the given gravity
+// (RobustThreeViewOptions::max_gravity_inconsistency_deg, derivations.md section 7.6), from a
+// gravity-free robust estimate with rotations R_2, R_3 (cam_k_from_cam1) and the unit gravities
+// g_k.
+struct GravityConsistency {
+  bool measured = false;  // the gravity-free estimate succeeded and the figures below are set
+  int num_inliers = 0;    // of the gravity-free estimate
+  // Pairs (1,2), (1,3), (2,3): angle(R_2 g_1, g_2), angle(R_3 g_1, g_3), angle(R_3 R_2^T g_2, g_3).
+  std::array<double, 3> pair_inconsistency_deg{};
+  // Views 2 and 3: angle of the rotation between the gravity-aware and the gravity-free
+  // cam_k_from_cam1; 0 when the gravity-aware estimate failed.
+  std::array<double, 2> rotation_disagreement_deg{};
+  // The camera (1, 2 or 3) that appears in the two pairs beyond the bound when the third is within
+  // it; 0 when no pair is beyond it or the pattern names no single camera.
+  int inconsistent_camera = 0;
 };
 
 struct RobustThreeViewEstimate {
@@ -48,17 +113,20 @@ struct RobustThreeViewEstimate {
   ThreeViewPose pose;         // original camera frames, |cam2_from_cam1.Center()| = 1
   std::vector<char> inliers;  // per triplet; ransac.num_inliers of them are set
   RansacStatistics ransac;
+  GravityConsistency gravity;
 };
 
 // Robust three-view relative pose from pixel triplets with outliers: RANSAC (ransac.h) over the
 // chosen minimal solver, every method scored by the same three-view reprojection error in pixels
 // (three_view_error.h). Gravity is used by the gravity-aware methods only. Throws
 // std::invalid_argument for invalid observations or options; numerical failure (too few triplets,
-// no model) gives success == false with a message. So do data without parallax between views 1
-// and 2: if a pure rotation of camera 2 (the best one for the winner's inliers, no baseline) puts
-// more than 80 % of those inliers within ransac.max_error pixels, camera 2's centre, which sets the
-// scale |C2| = 1, is not observable (zero baseline, pure rotation, points at infinity, identical
-// views); the threshold follows COLMAP's planar-or-panoramic test of two-view geometries.
+// no model, a best model below ransac.min_inlier_ratio, with the likely causes in the message, or
+// gravity the images contradict) gives success == false with a message. So do data without parallax
+// between views 1 and 2: if a pure rotation of camera 2 (the best one for the winner's inliers, no
+// baseline) puts more than 80 % of those inliers within ransac.max_error pixels, camera 2's centre,
+// which sets the scale |C2| = 1, is not observable (zero baseline, pure rotation, points at
+// infinity, identical views); the threshold follows COLMAP's planar-or-panoramic test of two-view
+// geometries.
 RobustThreeViewEstimate EstimateThreeViewPoseRobust(const ThreeViewObservations& observations,
                                                     const RobustThreeViewOptions& options);
 

@@ -5,36 +5,38 @@
 #include <array>
 #include <vector>
 
+#include "trigrav/initializers/camera_model.h"
+
 namespace trigrav {
 
-// Pinhole intrinsics without distortion: u = fx x/z + cx, v = fy y/z + cy.
-struct PinholeCamera {
-  double fx = 1.0, fy = 1.0, cx = 0.0, cy = 0.0;
-
-  // K^-1 [u v 1]^T: the ray through a pixel, z = 1.
-  Eigen::Vector3d Ray(const Eigen::Vector2d& pixel) const {
-    return Eigen::Vector3d((pixel.x() - cx) / fx, (pixel.y() - cy) / fy, 1.0);
-  }
-  // The pixel of a point (or direction) in camera coordinates, z != 0.
-  Eigen::Vector2d Project(const Eigen::Vector3d& point_in_cam) const {
-    return Eigen::Vector2d(fx * point_in_cam.x() / point_in_cam.z() + cx,
-                           fy * point_in_cam.y() / point_in_cam.z() + cy);
-  }
-  // True when fx, fy are positive and finite and cx, cy finite.
-  bool IsValid() const;
-};
-
-// What a pipeline has for three views: intrinsics, each camera's gravity direction (down, in its
-// own frame, any positive length) and the pixels of N point triplets.
+// What a pipeline has for three views: each camera's gravity direction (down, in its own frame,
+// any positive length) and N point triplets, given either as
+//  - pixels with a camera model per view (camera_model.h; a PinholeCamera converts), or
+//  - bearings: unit (any positive length) directions in each camera's frame, for users with a camera
+//    model of their own. `cameras` are then unused; the errors, thresholds and losses are angles
+//    (observation_residual.h) instead of pixels.
+// Nothing has a usable default: Check() rejects unset cameras (focal length 0) and unset gravity
+// (zero), also for the methods that ignore gravity.
 struct ThreeViewObservations {
-  std::array<PinholeCamera, 3> cameras;
+  std::array<Camera, 3> cameras;
   std::array<Eigen::Vector3d, 3> gravity_in_cam = {
-      Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitY()};
+      Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   std::array<std::vector<Eigen::Vector2d>, 3> pixels;  // pixels[k][n]: triplet n seen in view k
+  // Instead of pixels: bearings[k][n], the direction of triplet n in camera k's frame.
+  std::array<std::vector<Eigen::Vector3d>, 3> bearings;
 
-  std::size_t size() const { return pixels[0].size(); }
-  // Throws std::invalid_argument naming the problem: sizes differ, bad intrinsics, non-finite
-  // pixels, pixels whose ray K^-1 [u v 1]^T overflows, zero or non-finite gravity.
+  // True when the triplets are given as bearings (any view has bearings).
+  bool HasBearings() const {
+    return !bearings[0].empty() || !bearings[1].empty() || !bearings[2].empty();
+  }
+  std::size_t size() const { return HasBearings() ? bearings[0].size() : pixels[0].size(); }
+  // The ray of triplet n in view k's frame: the unprojected pixel (Camera::Unproject, z = 1), or the
+  // bearing as given. For observations that pass Check(); NaN if the pixel cannot be unprojected.
+  Eigen::Vector3d Ray(int k, std::size_t n) const;
+  // Throws std::invalid_argument naming the problem: sizes differ, pixels and bearings both given,
+  // unset or bad camera parameters, non-finite pixels, pixels the camera cannot unproject (beyond
+  // a distortion's fold, or so far out that the ray overflows), zero or non-finite bearings, unset
+  // (zero) or non-finite gravity.
   void Check() const;
 };
 

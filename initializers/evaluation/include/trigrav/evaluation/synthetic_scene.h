@@ -19,6 +19,8 @@ namespace trigrav {
 struct SyntheticSceneOptions {
   int num_points = 4;
   double focal_px = 500.0;
+  // OPENCV distortion (k1, k2, p1, p2) of all three cameras; all 0 (the default) gives PINHOLE.
+  std::array<double, 4> opencv_distortion = {0.0, 0.0, 0.0, 0.0};
   double width_px = 640.0;
   double height_px = 480.0;
   double max_yaw_deg = 10.0;   // yaw_k ~ U(-max, max), independently per view
@@ -46,16 +48,18 @@ struct SyntheticScene {
   std::array<double, 3> pitch_rad{}, roll_rad{}, yaw_rad{};
   std::vector<Eigen::Vector3d> points_in_world;
   std::array<std::vector<Eigen::Vector2d>, 3> pixels;  // noisy pixels of each view
-  std::array<std::vector<Eigen::Vector3d>, 3> rays;    // K^-1 [u v 1]^T of the noisy pixels
+  std::array<std::vector<Eigen::Vector3d>, 3> rays;  // unprojected noisy pixels (z = 1)
   std::array<Eigen::Matrix3d, 3> gravity_alignment_true;
   std::array<Eigen::Matrix3d, 3> gravity_alignment_measured;  // with IMU noise
   std::array<Eigen::Vector3d, 3> gravity_in_cam_measured;     // unit, down, with IMU noise
-  PinholeCamera camera;                                       // the same for all three views
+  Camera camera;                                              // the same for all three views
   std::vector<char> is_inlier;                                // per triplet
 };
 
 // The scene as a pipeline sees it: intrinsics, measured gravity and (noisy, outlier-ridden) pixels.
 ThreeViewObservations ToObservations(const SyntheticScene& scene);
+// The same as bearings: the unit rays of the pixels, no cameras.
+ThreeViewObservations ToBearingObservations(const SyntheticScene& scene);
 
 // Draws one scene. Points are drawn as uniform pixels in view 1 at a uniform view-1 depth and kept
 // if they are in front of and inside all three images; the scene is redrawn if 200 draws in a row

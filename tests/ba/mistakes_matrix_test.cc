@@ -1,0 +1,139 @@
+// Mistakes matrix: InitializeAndRefine at its defaults against each common input mistake of
+// trigrav/evaluation/input_mistakes.h (synthetic scenes of 600 triplets, 1 px noise, 10 %
+// outliers, f = 1000 px), and against pure outliers. A mistake must give success == false with a
+// message naming its likely cause; correct input must still give the true pose. The figures per
+// mistake are in the README's robustness table (examples/experiments/verdict_matrix).
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "trigrav/ba/initialize_and_refine.h"
+#include "trigrav/evaluation/input_mistakes.h"
+#include "trigrav/evaluation/pose_errors.h"
+#include "trigrav/evaluation/synthetic_scene.h"
+
+namespace trigrav {
+namespace {
+
+constexpr int kScenes = 2;
+
+std::vector<SyntheticScene> Scenes() {
+  SyntheticSceneOptions options;
+  options.num_points = 600;
+  options.focal_px = 1000.0;
+  options.width_px = 1280.0;
+  options.height_px = 720.0;
+  options.pixel_noise_px = 1.0;
+  options.outlier_ratio = 0.1;
+  std::mt19937_64 rng(17);
+  std::vector<SyntheticScene> scenes;
+  for (int s = 0; s < kScenes; ++s) scenes.push_back(GenerateSyntheticScene(options, &rng));
+  return scenes;
+}
+
+ThreeViewEstimate Estimate(const ThreeViewObservations& observations, std::uint64_t seed) {
+  InitializeAndRefineOptions options;
+  options.robust.ransac.seed = seed;
+  return InitializeAndRefine(observations, options);
+}
+
+bool Mentions(const std::string& message, const std::string& text) {
+  return message.find(text) != std::string::npos;
+}
+
+TEST(MistakesMatrix, CorrectInputGivesTheTruePose) {
+  const std::vector<SyntheticScene> scenes = Scenes();
+  for (int s = 0; s < kScenes; ++s) {
+    const ThreeViewEstimate estimate = Estimate(WithMistake(scenes[s], InputMistake::kNone), s);
+    ASSERT_TRUE(estimate.success) << estimate.message;
+    const ThreeViewPoseErrors errors =
+        ComputeThreeViewPoseErrors(scenes[s].ground_truth, estimate.refined);
+    EXPECT_LT(errors.MaxRotationDeg(), 0.2) << "scene " << s;
+    EXPECT_LT(errors.MaxTranslationDeg(), 2.0) << "scene " << s;
+    EXPECT_FALSE(estimate.gravity.measured);  // no check after a success by default
+  }
+}
+
+// Each mistake: a failure below the inlier-ratio floor whose message names the cause.
+TEST(MistakesMatrix, EveryMistakeFailsWithItsLikelyCause) {
+  struct Case {
+    InputMistake mistake;
+    std::vector<std::string> named;  // every one must appear in the message
+  };
+  const std::vector<Case> cases = {
+      {InputMistake::kGravitySignCamera2, {"gravity of camera 2", "wrong sign?"}},
+      {InputMistake::kWorldVerticalEveryCamera, {"the world's", "transpose"}},
+      {InputMistake::kTransposedRotation, {"the world's", "transpose"}},
+      {InputMistake::kHalfResolutionPixels, {"image resolution"}},
+      {InputMistake::kRowColumnPixels, {"(row, column)"}},
+      {InputMistake::kViews2And3PixelsSwapped, {"views out of order"}},
+  };
+  const std::vector<SyntheticScene> scenes = Scenes();
+  for (const Case& c : cases) {
+    for (int s = 0; s < kScenes; ++s) {
+      const ThreeViewEstimate estimate = Estimate(WithMistake(scenes[s], c.mistake), s);
+      const char* name = InputMistakeName(c.mistake);
+      EXPECT_FALSE(estimate.success) << name << " scene " << s;
+      EXPECT_TRUE(Mentions(estimate.message, "min_inlier_ratio")) << estimate.message;
+      for (const std::string& text : c.named) {
+        EXPECT_TRUE(Mentions(estimate.message, text)) << name << ": " << estimate.message;
+      }
+    }
+  }
+}
+
+// The flipped gravity is located: camera 2 in the two pairs beyond the bound, 180 deg off.
+TEST(MistakesMatrix, FlippedGravityNamesTheCameraAndTheAngle) {
+  const std::vector<SyntheticScene> scenes = Scenes();
+  for (int s = 0; s < kScenes; ++s) {
+    const ThreeViewEstimate estimate =
+        Estimate(WithMistake(scenes[s], InputMistake::kGravitySignCamera2), s);
+    ASSERT_TRUE(estimate.gravity.measured) << estimate.message;
+    EXPECT_EQ(estimate.gravity.inconsistent_camera, 2);
+    EXPECT_GT(estimate.gravity.pair_inconsistency_deg[0], 175.0);  // pair (1,2)
+    EXPECT_LT(estimate.gravity.pair_inconsistency_deg[1], 1.0);    // pair (1,3)
+    EXPECT_GT(estimate.gravity.pair_inconsistency_deg[2], 175.0);  // pair (2,3)
+    EXPECT_GT(estimate.gravity.num_inliers, 300);                  // of 540 true inliers
+  }
+}
+
+// With the check after a success, correct input keeps its pose and its gravity is consistent.
+TEST(MistakesMatrix, GravityCheckAfterSuccessKeepsCorrectInput) {
+  const std::vector<SyntheticScene> scenes = Scenes();
+  InitializeAndRefineOptions options;
+  options.robust.check_gravity_after_success = true;
+  for (int s = 0; s < kScenes; ++s) {
+    options.robust.ransac.seed = s;
+    const ThreeViewEstimate estimate =
+        InitializeAndRefine(WithMistake(scenes[s], InputMistake::kNone), options);
+    ASSERT_TRUE(estimate.success) << estimate.message;
+    ASSERT_TRUE(estimate.gravity.measured);
+    for (const double angle : estimate.gravity.pair_inconsistency_deg) EXPECT_LT(angle, 2.8);
+    for (const double angle : estimate.gravity.rotation_disagreement_deg) EXPECT_LT(angle, 2.8);
+  }
+}
+
+TEST(MistakesMatrix, PureOutliersFailWithAClearMessage) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1280.0), v(0.0, 720.0);
+  ThreeViewObservations observations;
+  for (int k = 0; k < 3; ++k) {
+    observations.cameras[k] = PinholeCamera{1000.0, 1000.0, 640.0, 360.0};
+    observations.gravity_in_cam[k] = Eigen::Vector3d::UnitY();
+    for (int n = 0; n < 1000; ++n) observations.pixels[k].emplace_back(u(rng), v(rng));
+  }
+  const ThreeViewEstimate estimate = Estimate(observations, 1);
+  EXPECT_FALSE(estimate.success);
+  EXPECT_TRUE(Mentions(estimate.message, "min_inlier_ratio")) << estimate.message;
+  EXPECT_TRUE(Mentions(estimate.message, "triplets that are not matches")) << estimate.message;
+  EXPECT_FALSE(estimate.gravity.measured);  // no gravity-free model either
+  // Stopped at the floor's sample count, not at max_iterations (log(1e-4) / log(1 - 0.25^3)).
+  EXPECT_EQ(estimate.ransac.iterations, 585);
+}
+
+}  // namespace
+}  // namespace trigrav

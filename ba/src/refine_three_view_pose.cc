@@ -1,8 +1,11 @@
 #include "trigrav/ba/refine_three_view_pose.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "trigrav/ba/three_view_covariance.h"
 
 namespace trigrav {
 
@@ -33,6 +36,17 @@ ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observation
   refinement.pose = adjuster.CurrentPose();
   refinement.triplets = adjuster.triplet_indices();
   refinement.points_in_cam1 = adjuster.points();
+  refinement.residual_norms = adjuster.ResidualNorms();
+  double sum_squares = 0.0;
+  for (const Eigen::Vector3d& norms : refinement.residual_norms) sum_squares += norms.squaredNorm();
+  refinement.residual_rms =
+      std::sqrt(sum_squares / (6.0 * static_cast<double>(refinement.residual_norms.size())));
+  refinement.relative_scale = refinement.pose.cam3_from_cam1.Center().norm() /
+                              refinement.pose.cam2_from_cam1.Center().norm();
+  if (options.compute_covariance && refinement.summary.success) {
+    ComputeThreeViewPoseCovariance(&adjuster, options.ObservationSigma(observations),
+                                   &refinement.covariance, &refinement.summary.message);
+  }
   return refinement;
 }
 

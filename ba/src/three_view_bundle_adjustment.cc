@@ -38,9 +38,9 @@ ceres::CostFunction* MakeFactor(bool yaw_only,
                                 const Residual& residual,
                                 const Eigen::Matrix3d& alignment_cam,
                                 const Eigen::Matrix3d& alignment_ref) {
-  return yaw_only ? YawOnlyReprojectionError<Residual>::Create(residual, alignment_cam,
-                                                               alignment_ref)
-                  : ReprojectionError<Residual>::Create(residual);
+  return yaw_only
+             ? YawOnlyReprojectionError<Residual>::Create(residual, alignment_cam, alignment_ref)
+             : ReprojectionError<Residual>::Create(residual);
 }
 
 // Best-fitting yaw of a rotation that should be R_y(yaw).
@@ -172,7 +172,8 @@ bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial) {
     if (!TriangulateMidpoint(center, directions, &x) || !x.allFinite()) continue;
     bool in_front = true;
     for (int k = 0; k < 3; ++k) {
-      in_front = in_front && std::isfinite(error_.ObservationError(k, i, rotation[k] * (x - center[k])));
+      in_front =
+          in_front && std::isfinite(error_.ObservationError(k, i, rotation[k] * (x - center[k])));
     }
     if (!in_front) continue;
     points_.push_back(x);
@@ -257,6 +258,37 @@ ThreeViewPose ThreeViewBundleAdjuster::CurrentPose() const {
     poses[j]->t = -poses[j]->R * c;
   }
   return pose;
+}
+
+double* ThreeViewBundleAdjuster::RotationBlock(int view) {
+  if (view != 2 && view != 3) {
+    throw std::invalid_argument(
+        "trigrav: ThreeViewBundleAdjuster::RotationBlock: view must be 2 or 3");
+  }
+  return options_.rotation_model == ThreeViewBundleAdjustmentOptions::RotationModel::kYawOnly
+             ? &yaw_[view - 2]
+             : quaternion_[view - 2];
+}
+
+double* ThreeViewBundleAdjuster::CenterBlock(int view) {
+  if (view != 2 && view != 3) {
+    throw std::invalid_argument(
+        "trigrav: ThreeViewBundleAdjuster::CenterBlock: view must be 2 or 3");
+  }
+  return center_[view - 2];
+}
+
+std::vector<Eigen::Vector3d> ThreeViewBundleAdjuster::ResidualNorms() const {
+  const ThreeViewReprojectionError::PreparedPose pose =
+      ThreeViewReprojectionError::Prepare(CurrentPose());
+  std::vector<Eigen::Vector3d> norms(points_.size());
+  for (std::size_t p = 0; p < points_.size(); ++p) {
+    for (int k = 0; k < 3; ++k) {
+      norms[p][k] = error_.ObservationError(
+          k, used_triplets_[p], pose.cam_from_ref[k] * (points_[p] - pose.center_in_ref[k]));
+    }
+  }
+  return norms;
 }
 
 ThreeViewBundleAdjustmentSummary ThreeViewBundleAdjuster::Solve() {

@@ -32,6 +32,9 @@ DEFINE_double(noise_px, 1.0, "Image noise sigma in pixels.");
 DEFINE_double(outlier_ratio, 0.1, "Fraction of outlier triplets.");
 DEFINE_double(imu_noise_deg, 0.0, "Sigma of each camera's pitch and roll error (deg).");
 DEFINE_double(focal_px, 1000.0, "Focal length (px) of the 1280 x 720 images.");
+DEFINE_double(max_tilt_deg, 10.0, "Pitch and roll of each camera within +-this (deg).");
+DEFINE_double(max_yaw_deg, 10.0, "Yaw of each camera within +-this (deg).");
+DEFINE_double(max_center_m, 10.0, "Centres of cameras 2 and 3 within +-this (m) per axis.");
 DEFINE_double(min_inlier_ratio, 0.25, "robust.ransac.min_inlier_ratio.");
 DEFINE_bool(gravity_check, true, "false: robust.max_gravity_inconsistency_deg = infinity.");
 DEFINE_bool(gravity_prior,
@@ -72,6 +75,9 @@ trigrav::SyntheticSceneOptions SceneOptions() {
   options.focal_px = FLAGS_focal_px;
   options.width_px = 1280.0;
   options.height_px = 720.0;
+  options.max_tilt_deg = FLAGS_max_tilt_deg;
+  options.max_yaw_deg = FLAGS_max_yaw_deg;
+  options.max_center_m = FLAGS_max_center_m;
   options.pixel_noise_px = FLAGS_noise_px;
   options.outlier_ratio = FLAGS_outlier_ratio;
   options.imu_pitch_noise_deg = options.imu_roll_noise_deg = FLAGS_imu_noise_deg;
@@ -176,6 +182,10 @@ int main(int argc, char** argv) {
               "--outlier_ratio must be in [0, 1)");
   RequireFlag(FLAGS_focal_px > 0.0 && std::isfinite(FLAGS_focal_px),
               "--focal_px must be positive and finite");
+  for (const double value : {FLAGS_max_tilt_deg, FLAGS_max_yaw_deg, FLAGS_max_center_m}) {
+    RequireFlag(value >= 0.0 && std::isfinite(value),
+                "--max_tilt_deg, --max_yaw_deg and --max_center_m must be finite and >= 0");
+  }
   const trigrav::SyntheticSceneOptions scene_options = SceneOptions();
 
   std::mt19937_64 rng(FLAGS_seed);

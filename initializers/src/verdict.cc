@@ -63,9 +63,9 @@ std::string GravityDiagnosis(double bound, int gravity_aware_inliers, GravityCon
            "every camera, gravity mapped with the rotation's transpose, or views out of order?" +
            figures;
   }
-  for (int p = 0; p < 3 && num_off == 1; ++p) {
-    if (angle[p] <= bound) continue;
-    const int a = p == 2 ? 2 : 1, b = p == 0 ? 2 : 3;
+  if (num_off == 1) {
+    const int p = angle[0] > bound ? 0 : angle[1] > bound ? 1 : 2;
+    const int a = p == 2 ? 2 : 1, b = p == 0 ? 2 : 3;  // the pair's cameras
     return Format(
                "the gravities of cameras %d and %d disagree with the images by %.1f deg: one "
                "of them wrong?",

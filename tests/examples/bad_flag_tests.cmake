@@ -188,3 +188,14 @@ trigrav_add_bad_flag_test(verdict_matrix_floor_one verdict_matrix
   "--min_inlier_ratio must be in \\[0, 1\\)" --min_inlier_ratio=1)
 trigrav_add_bad_flag_test(verdict_matrix_nan_noise verdict_matrix
   "--noise_px must be finite and >= 0" --noise_px=nan)
+
+trigrav_add_bad_flag_test(covariance_calibration_zero_scenes covariance_calibration
+  "--scenes must be positive" --scenes=0)
+trigrav_add_bad_flag_test(covariance_calibration_zero_noise covariance_calibration
+  "--noise_px ${positive}" --noise_px=0)
+trigrav_add_bad_flag_test(covariance_calibration_nan_imu_noise covariance_calibration
+  "--imu_noise_deg ${positive}" --imu_noise_deg=nan)
+trigrav_add_bad_flag_test(covariance_calibration_all_outliers covariance_calibration
+  "${outlier_ratio_range}" --outlier_ratio=1)
+trigrav_add_bad_flag_test(covariance_calibration_infinite_threshold covariance_calibration
+  "--threshold_px ${positive}" --threshold_px=inf)

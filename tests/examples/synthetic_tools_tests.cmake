@@ -46,4 +46,11 @@ if(TARGET minimal_solver_accuracy)
     PASS_REGULAR_EXPRESSION "summary: 10 trials, 0 without solution")
 endif()
 
+if(TARGET covariance_calibration)
+  # 50 scenes per case and 3 timed problems: every table, the normalised error and the cost lines.
+  add_test(NAME covariance_calibration_quick COMMAND covariance_calibration --quick)
+  set_tests_properties(covariance_calibration_quick PROPERTIES TIMEOUT 120
+    PASS_REGULAR_EXPRESSION "yaw-only, exact gravity.*normalised error.*IMU pitch / roll noise.*ceres::Covariance SPARSE_QR")
+endif()
+
 include(${CMAKE_CURRENT_LIST_DIR}/bad_flag_tests.cmake)

@@ -4,11 +4,13 @@
 // Umbrella header: every public header of trigrav (target trigrav::trigrav).
 
 // trigrav::initializers: poses, observations, gravity, the minimal solvers, RANSAC.
+#include "trigrav/initializers/camera_model.h"
 #include "trigrav/initializers/camera_pose.h"
 #include "trigrav/initializers/essential_5pt.h"
 #include "trigrav/initializers/essential_8pt.h"
 #include "trigrav/initializers/gravity.h"
 #include "trigrav/initializers/initial_solver.h"
+#include "trigrav/initializers/observation_residual.h"
 #include "trigrav/initializers/ransac.h"
 #include "trigrav/initializers/robust_three_view.h"
 #include "trigrav/initializers/three_view_error.h"
@@ -34,5 +36,6 @@
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/ba/refine_three_view_pose.h"
 #include "trigrav/ba/three_view_bundle_adjustment.h"
+#include "trigrav/ba/three_view_covariance.h"
 
 #endif  // TRIGRAV_TRIGRAV_H_

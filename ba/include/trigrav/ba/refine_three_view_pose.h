@@ -23,6 +23,21 @@ struct ThreeViewRefinement {
   // The refined points in camera 1's frame, one per entry of `triplets` (empty when the problem
   // could not be built).
   std::vector<Eigen::Vector3d> points_in_cam1;
+  // Per entry of `triplets`: the residual norms of its observations in views 1, 2, 3 at the refined
+  // pose and point (pixels, degrees for bearings). maxCoeff() is the inlier error of
+  // three_view_error.h, evaluated at the refined point instead of the midpoint.
+  std::vector<Eigen::Vector3d> residual_norms;
+  // RMS of the residual components, sqrt(sum |r|^2 / (6 triplets)) (pixels, degrees for bearings),
+  // gravity prior excluded. With Gaussian noise of sigma per component it is near
+  // sigma sqrt(1 - (3 triplets + pose dof) / (6 triplets)): points and pose absorb part of the
+  // noise (about 0.71 sigma for 80 triplets).
+  double residual_rms = 0.0;
+  double relative_scale = 0.0;  // |C3| / |C2| of `pose`
+  // With options.compute_covariance: the pose's covariance (three_view_covariance.h: 7 x 7 for
+  // kYawOnly, 11 x 11 for kGravityPrior), scaled by options.ObservationSigma()^2. Empty when not
+  // asked for, when the refinement failed, or when it cannot be computed (rank-deficient; the
+  // reason in summary.message, summary.success stays true). Never NaN.
+  Eigen::MatrixXd covariance;
   ThreeViewBundleAdjustmentSummary summary;  // success, message, costs, the full Ceres summary
 };
 

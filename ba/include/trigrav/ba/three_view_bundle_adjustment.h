@@ -57,6 +57,14 @@ struct ThreeViewBundleAdjustmentOptions {
   double loss_scale_deg = 0.1;
   double bearing_sigma_deg = 0.05;
   double gravity_sigma_deg = 0.5;  // IMU angular sigma (gravity-prior model)
+  // Also compute the covariance of the refined pose (ThreeViewRefinement::covariance;
+  // three_view_covariance.h, derivations.md section 12), scaled by ObservationSigma()^2 (and
+  // gravity_sigma_deg^2 through the prior's weight). Cost per refinement (one thread, median;
+  // examples/experiments/covariance_calibration): 0.9 ms at 300 points, 1.9 ms at 650 (yaw-only;
+  // 1.1 and 2.4 ms gravity-prior), 8-9 % of the refinement; ceres::Covariance (SPARSE_QR) on the
+  // same problem takes 2.5-2.7 and 5.3-6.3 ms. InitializeAndRefine computes it in every refinement
+  // run.
+  bool compute_covariance = false;
   int max_num_iterations = 50;
   int num_threads = 1;
   ceres::LinearSolverType linear_solver_type = ceres::DENSE_SCHUR;
@@ -77,8 +85,9 @@ struct ThreeViewBundleAdjustmentOptions {
 // the adjuster, and returned by RefineThreeViewPose).
 struct ThreeViewBundleAdjustmentSummary {
   bool success = false;  // Ceres ran and returned a usable (finite) solution
-  std::string message;   // why not, when !success
-  int num_points = 0;    // triplets in the problem
+  // Why not, when !success; when success, empty or a note (e.g. why the covariance is empty).
+  std::string message;
+  int num_points = 0;  // triplets in the problem
   int num_residual_blocks = 0;
   double solve_time_s = 0.0;
   // The full report of ceres::Solve (costs 1/2 sum rho(|r|^2), steps, termination, timings).
@@ -118,12 +127,31 @@ class ThreeViewBundleAdjuster {
   ThreeViewBundleAdjustmentSummary Solve();
 
   const std::string& message() const { return message_; }
+  const ThreeViewBundleAdjustmentOptions& options() const { return options_; }
+  // The problem and its parameter blocks, valid after a successful Build(), for a caller who adds
+  // factors of their own or runs ceres::Covariance on it. Camera 1 is not in the problem; for
+  // view 2 or 3 (std::invalid_argument otherwise):
+  //  - RotationBlock(view): kYawOnly: the yaw (1 number, YawManifold; R = A_k^T R_y(yaw) A_1);
+  //    kGravityPrior: the rotation cam_from_cam1 as a quaternion [w x y z] (4,
+  //    ceres::QuaternionManifold, whose Plus is q <- [cos|d|, sin|d| d / |d|] * q: a rotation by
+  //    2 |d| about d, multiplied on the left, in camera k's frame).
+  //  - CenterBlock(view): the centre C_k in camera 1's frame (3); view 2's lives on
+  //    ceres::SphereManifold<3> (|C2| = 1, the gauge).
+  // PointBlock(p): point p (3, camera 1's frame) of triplet_indices()[p]; constant when
+  // Config::constant_points.
   ceres::Problem* problem() { return problem_.get(); }
+  double* RotationBlock(int view);
+  double* CenterBlock(int view);
+  double* PointBlock(int p) { return points_[p].data(); }
   // The pose currently held in the parameter blocks.
   ThreeViewPose CurrentPose() const;
   // Points of the problem's triplets (reference frame), in the order of triplet_indices().
   const std::vector<Eigen::Vector3d>& points() const { return points_; }
   const std::vector<int>& triplet_indices() const { return used_triplets_; }
+  // Per point (order of points()): the residual norms of its observations in views 1, 2, 3 at the
+  // current pose and points (pixels, degrees for bearings; observation_residual.h), +inf for an
+  // observation that cannot see its point.
+  std::vector<Eigen::Vector3d> ResidualNorms() const;
 
  private:
   const ThreeViewObservations& observations_;

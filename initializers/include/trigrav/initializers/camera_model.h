@@ -18,7 +18,8 @@
 //                                                       theta = atan(r), theta_d = theta (1 +
 //                                                       k1 theta^2 + k2 theta^4 + k3 theta^6 +
 //                                                       k4 theta^8)
-// Pixels follow COLMAP's convention: the centre of the top-left pixel is (0.5, 0.5).
+// Pixels follow COLMAP's convention: the centre of the top-left pixel is (0.5, 0.5). Derivations:
+// derivations.md section 11.1 (models) and 11.2 (unprojection).
 
 #include <Eigen/Core>
 #include <array>

@@ -22,8 +22,9 @@ std::string Entry(const char* name, int k, std::size_t n) {
 
 void CheckCamera(const Camera& camera, int k) {
   if (camera.FocalX() == 0.0 && camera.FocalY() == 0.0) {
-    Fail("camera " + std::to_string(k + 1) +
-         " is not set (focal length 0): give each view's intrinsics, or bearings instead of pixels");
+    Fail(
+        "camera " + std::to_string(k + 1) +
+        " is not set (focal length 0): give each view's intrinsics, or bearings instead of pixels");
   }
   try {
     camera.Check();
@@ -62,7 +63,7 @@ void CheckBearings(const std::vector<Eigen::Vector3d>& bearings, int k) {
   for (std::size_t n = 0; n < bearings.size(); ++n) {
     if (internal::IsUsableDirection(bearings[n])) continue;
     Fail(Entry("bearings", k, n) + " is " +
-         (!bearings[n].allFinite()  ? "not finite"
+         (!bearings[n].allFinite()   ? "not finite"
           : bearings[n].norm() > 0.0 ? "too long (its squared length overflows)"
                                      : "zero"));
   }

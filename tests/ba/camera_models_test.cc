@@ -74,24 +74,25 @@ MedianErrors RunScenes(const SyntheticSceneOptions& scene_options,
 // camera give a far worse pose, or a failure.
 TEST(CameraModels, OpenCvDistortionRecoversThePoseAsAccuratelyAsPinhole) {
   constexpr int kScenes = 60;
-  const MedianErrors pinhole =
-      RunScenes(NoisyScene({0.0, 0.0, 0.0, 0.0}), kScenes, ToObservations);
+  const MedianErrors pinhole = RunScenes(NoisyScene({0.0, 0.0, 0.0, 0.0}), kScenes, ToObservations);
   const SyntheticSceneOptions distorted_options = NoisyScene({-0.3, 0.0, 0.0, 0.0});
   const MedianErrors distorted = RunScenes(distorted_options, kScenes, ToObservations);
   const MedianErrors ignored = RunScenes(distorted_options, kScenes, [](const SyntheticScene& s) {
     ThreeViewObservations observations = ToObservations(s);
     for (Camera& camera : observations.cameras) {
-      camera = PinholeCamera{camera.params[0], camera.params[1], camera.params[2],
-                             camera.params[3]};
+      camera =
+          PinholeCamera{camera.params[0], camera.params[1], camera.params[2], camera.params[3]};
     }
     return observations;
   });
-  for (const auto& [name, e] : {std::pair{"pinhole", pinhole}, std::pair{"OPENCV k1 = -0.3", distorted},
-                                std::pair{"distortion ignored", ignored}}) {
-    std::printf("%-18s median rotation / translation error %.4f / %.4f deg (oracle %.4f / %.4f), "
-                "%d failures\n",
-                name, e.rotation_deg, e.translation_deg, e.oracle_rotation_deg,
-                e.oracle_translation_deg, e.failures);
+  for (const auto& [name, e] :
+       {std::pair{"pinhole", pinhole}, std::pair{"OPENCV k1 = -0.3", distorted},
+        std::pair{"distortion ignored", ignored}}) {
+    std::printf(
+        "%-18s median rotation / translation error %.4f / %.4f deg (oracle %.4f / %.4f), "
+        "%d failures\n",
+        name, e.rotation_deg, e.translation_deg, e.oracle_rotation_deg, e.oracle_translation_deg,
+        e.failures);
   }
   EXPECT_EQ(pinhole.failures, 0);
   EXPECT_EQ(distorted.failures, 0);
@@ -169,9 +170,10 @@ TEST(BearingObservations, AsAccurateAsThePixelPathWithNoise) {
     rotation.push_back(e.MaxRotationDeg());
     translation.push_back(e.MaxTranslationDeg());
   }
-  std::printf("median rotation / translation error (deg): pixels %.4f / %.4f, bearings %.4f / "
-              "%.4f\n",
-              pixel.rotation_deg, pixel.translation_deg, Median(rotation), Median(translation));
+  std::printf(
+      "median rotation / translation error (deg): pixels %.4f / %.4f, bearings %.4f / "
+      "%.4f\n",
+      pixel.rotation_deg, pixel.translation_deg, Median(rotation), Median(translation));
   EXPECT_LT(Median(rotation), 1.15 * pixel.rotation_deg);
   EXPECT_LT(Median(translation), 1.15 * pixel.translation_deg);
 }

@@ -100,9 +100,9 @@ TEST(FactorsTest, YawOnlyReprojectionMatchesPoseProjection) {
 TEST(FactorsTest, BearingResidualIsTheAngleInDegrees) {
   const Eigen::Vector3d b = Eigen::Vector3d(0.2, -0.4, 1.0).normalized();
   const BearingResidual residual(5.0 * b);
-  EXPECT_NEAR((residual.frame() * residual.frame().transpose() - Eigen::Matrix3d::Identity())
-                  .norm(),
-              0.0, 1e-15);
+  EXPECT_NEAR(
+      (residual.frame() * residual.frame().transpose() - Eigen::Matrix3d::Identity()).norm(), 0.0,
+      1e-15);
   const Eigen::Vector3d axis = b.cross(Eigen::Vector3d::UnitX()).normalized();
   for (const double angle_deg : {0.01, 0.5, 10.0}) {
     const Eigen::Vector3d x = 7.0 * (Eigen::AngleAxisd(angle_deg * M_PI / 180.0, axis) * b);

@@ -1,7 +1,6 @@
 // Camera models: COLMAP names and parameter counts, projection against hand-computed values, and
 // the round trip pixel -> ray -> pixel to 1e-10 px for every model over the whole image.
 #include "trigrav/initializers/camera_model.h"
-#include "typical_cameras.h"
 
 #include <gtest/gtest.h>
 
@@ -9,6 +8,8 @@
 #include <random>
 #include <stdexcept>
 #include <vector>
+
+#include "typical_cameras.h"
 
 namespace trigrav {
 namespace {

@@ -24,8 +24,9 @@
 namespace trigrav {
 
 // The three reprojection factors are templated on the observation's residual
-// (trigrav/initializers/observation_residual.h): PixelResidual (a camera model and a pixel; residual
-// in pixels) or BearingResidual (a unit bearing; residual in degrees). Both are instantiated.
+// (trigrav/initializers/observation_residual.h): PixelResidual (a camera model and a pixel;
+// residual in pixels) or BearingResidual (a unit bearing; residual in degrees). Both are
+// instantiated.
 
 // Residual (2) of a point (parameter block of 3, reference frame) seen by camera k with the
 // yaw-only rotation R = A_k^T R_y(yaw) A_1. Parameter blocks: yaw (1), centre C_k (3), point (3).

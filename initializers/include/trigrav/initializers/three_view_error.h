@@ -26,8 +26,8 @@ bool TriangulateMidpoint(const std::array<Eigen::Vector3d, 3>& centers_in_ref,
 // 7): triangulate the triplet by the multi-view midpoint in the original (unaligned) frames,
 // reproject into all three views and take the largest residual norm (observation_residual.h): in
 // pixels of the real camera for pixel observations, in degrees for bearings; +inf if the point is
-// behind any camera or cannot be triangulated. Unlike the largest pairwise Sampson error, it sees an
-// outlier that slides along its epipolar line when the three centres are collinear (straight
+// behind any camera or cannot be triangulated. Unlike the largest pairwise Sampson error, it sees
+// an outlier that slides along its epipolar line when the three centres are collinear (straight
 // driving).
 class ThreeViewReprojectionError {
  public:

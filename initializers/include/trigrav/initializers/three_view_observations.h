@@ -12,15 +12,16 @@ namespace trigrav {
 // What a pipeline has for three views: each camera's gravity direction (down, in its own frame,
 // any positive length) and N point triplets, given either as
 //  - pixels with a camera model per view (camera_model.h; a PinholeCamera converts), or
-//  - bearings: unit (any positive length) directions in each camera's frame, for users with a camera
+//  - bearings: unit (any positive length) directions in each camera's frame, for users with a
+//  camera
 //    model of their own. `cameras` are then unused; the errors, thresholds and losses are angles
 //    (observation_residual.h) instead of pixels.
 // Nothing has a usable default: Check() rejects unset cameras (focal length 0) and unset gravity
 // (zero), also for the methods that ignore gravity.
 struct ThreeViewObservations {
   std::array<Camera, 3> cameras;
-  std::array<Eigen::Vector3d, 3> gravity_in_cam = {
-      Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  std::array<Eigen::Vector3d, 3> gravity_in_cam = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                                   Eigen::Vector3d::Zero()};
   std::array<std::vector<Eigen::Vector2d>, 3> pixels;  // pixels[k][n]: triplet n seen in view k
   // Instead of pixels: bearings[k][n], the direction of triplet n in camera k's frame.
   std::array<std::vector<Eigen::Vector3d>, 3> bearings;
@@ -30,8 +31,9 @@ struct ThreeViewObservations {
     return !bearings[0].empty() || !bearings[1].empty() || !bearings[2].empty();
   }
   std::size_t size() const { return HasBearings() ? bearings[0].size() : pixels[0].size(); }
-  // The ray of triplet n in view k's frame: the unprojected pixel (Camera::Unproject, z = 1), or the
-  // bearing as given. For observations that pass Check(); NaN if the pixel cannot be unprojected.
+  // The ray of triplet n in view k's frame: the unprojected pixel (Camera::Unproject, z = 1), or
+  // the bearing as given. For observations that pass Check(); NaN if the pixel cannot be
+  // unprojected.
   Eigen::Vector3d Ray(int k, std::size_t n) const;
   // Throws std::invalid_argument naming the problem: sizes differ, pixels and bearings both given,
   // unset or bad camera parameters, non-finite pixels, pixels the camera cannot unproject (beyond

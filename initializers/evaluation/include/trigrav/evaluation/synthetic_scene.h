@@ -48,7 +48,7 @@ struct SyntheticScene {
   std::array<double, 3> pitch_rad{}, roll_rad{}, yaw_rad{};
   std::vector<Eigen::Vector3d> points_in_world;
   std::array<std::vector<Eigen::Vector2d>, 3> pixels;  // noisy pixels of each view
-  std::array<std::vector<Eigen::Vector3d>, 3> rays;  // unprojected noisy pixels (z = 1)
+  std::array<std::vector<Eigen::Vector3d>, 3> rays;    // unprojected noisy pixels (z = 1)
   std::array<Eigen::Matrix3d, 3> gravity_alignment_true;
   std::array<Eigen::Matrix3d, 3> gravity_alignment_measured;  // with IMU noise
   std::array<Eigen::Vector3d, 3> gravity_in_cam_measured;     // unit, down, with IMU noise

@@ -88,6 +88,28 @@ void ThreeViewBundleAdjustmentOptions::Check() const {
           "unknown linear_solver_type");
 }
 
+ceres::Solver::Options ThreeViewBundleAdjustmentOptions::CeresSolverOptions() const {
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = linear_solver_type;
+  solver_options.max_num_iterations = max_num_iterations;
+  solver_options.num_threads = num_threads;
+  solver_options.function_tolerance = function_tolerance;
+  solver_options.gradient_tolerance = gradient_tolerance;
+  solver_options.parameter_tolerance = parameter_tolerance;
+  // Nothing on stdout or stderr. SILENT does not cover Ceres 2.1's unconditional LOG(WARNING) in
+  // levenberg_marquardt_strategy.cc on a failed linear solve ("Linear solver failure ... Unable to
+  // perform dense Cholesky factorization", on stderr without InitGoogleLogging; Ceres then retries
+  // with a smaller radius). DENSE_SCHUR's reduced system fails once the trust region radius passes
+  // ~1e8 (distant points: near-singular point blocks, round-off growing with the radius while the
+  // damping falls as 1 / radius). At Ceres' default cap (1e16) 30 of 1000 InitializeAndRefine calls
+  // on driving triplets printed; at 1e7 none, same median errors (tests/ba/quiet_test.cc). No glog
+  // flag is touched.
+  solver_options.logging_type = ceres::SILENT;
+  solver_options.minimizer_progress_to_stdout = false;
+  solver_options.max_trust_region_radius = 1e7;
+  return solver_options;
+}
+
 double ThreeViewBundleAdjustmentOptions::LossScale(
     const ThreeViewObservations& observations) const {
   return observations.HasBearings() ? loss_scale_deg : loss_scale_px;
@@ -308,24 +330,7 @@ ThreeViewBundleAdjustmentSummary ThreeViewBundleAdjuster::Solve() {
   }
   const std::vector<Eigen::Vector3d> points_backup = points_;
 
-  ceres::Solver::Options solver_options;
-  solver_options.linear_solver_type = options_.linear_solver_type;
-  solver_options.max_num_iterations = options_.max_num_iterations;
-  solver_options.num_threads = options_.num_threads;
-  solver_options.function_tolerance = options_.function_tolerance;
-  solver_options.gradient_tolerance = options_.gradient_tolerance;
-  solver_options.parameter_tolerance = options_.parameter_tolerance;
-  // Nothing on stdout or stderr. SILENT does not cover Ceres 2.1's unconditional LOG(WARNING) in
-  // levenberg_marquardt_strategy.cc on a failed linear solve ("Linear solver failure ... Unable to
-  // perform dense Cholesky factorization", on stderr without InitGoogleLogging; Ceres then retries
-  // with a smaller radius). DENSE_SCHUR's reduced system fails once the trust region radius passes
-  // ~1e8 (distant points: near-singular point blocks, round-off growing with the radius while the
-  // damping falls as 1 / radius). At Ceres' default cap (1e16) 30 of 1000 InitializeAndRefine calls
-  // on driving triplets printed; at 1e7 none, same median errors (tests/ba/quiet_test.cc). No glog
-  // flag is touched.
-  solver_options.logging_type = ceres::SILENT;
-  solver_options.minimizer_progress_to_stdout = false;
-  solver_options.max_trust_region_radius = 1e7;
+  const ceres::Solver::Options solver_options = options_.CeresSolverOptions();
   std::string error;
   if (!solver_options.IsValid(&error)) {
     out.message = "invalid Ceres options: " + error;

@@ -108,15 +108,8 @@ InitializeAndRefineOptions DrivingOptions(RotationModel model, std::uint64_t see
 
 // The Ceres options of ThreeViewBundleAdjuster::Solve, with Ceres' default trust region radius cap.
 ceres::Solver::Options UncappedSolverOptions(const ThreeViewBundleAdjustmentOptions& options) {
-  ceres::Solver::Options solver_options;
-  solver_options.linear_solver_type = options.linear_solver_type;
-  solver_options.max_num_iterations = options.max_num_iterations;
-  solver_options.num_threads = options.num_threads;
-  solver_options.function_tolerance = options.function_tolerance;
-  solver_options.gradient_tolerance = options.gradient_tolerance;
-  solver_options.parameter_tolerance = options.parameter_tolerance;
-  solver_options.logging_type = ceres::SILENT;
-  solver_options.minimizer_progress_to_stdout = false;
+  ceres::Solver::Options solver_options = options.CeresSolverOptions();
+  solver_options.max_trust_region_radius = ceres::Solver::Options().max_trust_region_radius;
   return solver_options;
 }
 

@@ -59,9 +59,11 @@ struct ThreeViewEstimate {
   ThreeViewPose refined;
   std::vector<char> inliers;  // per triplet: inliers of `refined` (those the last refinement used)
   int num_inliers = 0;
-  // The bundle adjustment that produced `refined` (the last successful run), with the refined
-  // points; when none succeeded, the first run, its summary.success false and the reason in its
-  // summary.message.
+  // The bundle adjustment that produced `refined` (the last successful run): the refined points,
+  // per-triplet residual norms, residual RMS, relative scale and, with
+  // bundle_adjustment.compute_covariance, the pose covariance (computed in every run, about 1-2 ms
+  // each at 300-650 inliers; the last one is kept). When none succeeded, the first run, its
+  // summary.success false and the reason in its summary.message.
   ThreeViewRefinement refinement;
   int refinement_runs = 0;  // successful bundle adjustments (1 + re-classification rounds used)
   ThreeViewEstimateTimings timings;

@@ -78,6 +78,10 @@ struct ThreeViewBundleAdjustmentOptions {
   // The loss scale and the observation sigma that apply to the observations: the *_deg fields for
   // bearings, else the *_px ones.
   double LossScale(const ThreeViewObservations& observations) const;
+  // The ceres::Solver::Options of Solve(): linear solver, iterations, threads and tolerances from
+  // these fields; silent, with the trust region radius capped at 1e7 (the cap keeps Ceres' dense
+  // Cholesky from failing, and printing, on distant points).
+  ceres::Solver::Options CeresSolverOptions() const;
   double ObservationSigma(const ThreeViewObservations& observations) const;
 };
 

@@ -151,6 +151,25 @@ TEST(BearingObservations, EqualThePixelPathOnExactPinholeData) {
   }
 }
 
+// Every method takes bearings: on exact data each recovers the true pose from them, as from pixels.
+TEST(BearingObservations, EveryMethodRecoversTheTruePose) {
+  SyntheticSceneOptions scene_options;
+  scene_options.num_points = 100;
+  scene_options.outlier_ratio = 0.2;
+  std::mt19937_64 rng(3000);
+  const SyntheticScene scene = GenerateSyntheticScene(scene_options, &rng);
+  for (const InitialSolver solver : kInitialSolvers) {
+    RobustThreeViewOptions options;
+    options.solver = solver;
+    const RobustThreeViewEstimate estimate =
+        EstimateThreeViewPoseRobust(ToBearingObservations(scene), options);
+    ASSERT_TRUE(estimate.success) << InitialSolverName(solver) << ": " << estimate.message;
+    EXPECT_LT(ComputeThreeViewPoseErrors(scene.ground_truth, estimate.pose).MaxAngleDeg(), 1e-6)
+        << InitialSolverName(solver);
+    EXPECT_EQ(estimate.inliers, scene.is_inlier) << InitialSolverName(solver);
+  }
+}
+
 // With noise the two paths minimise different errors (pixels against angles), so they agree to
 // the noise's order, and the bearing path is as accurate.
 TEST(BearingObservations, AsAccurateAsThePixelPathWithNoise) {

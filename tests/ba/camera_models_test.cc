@@ -197,5 +197,79 @@ TEST(BearingObservations, AsAccurateAsThePixelPathWithNoise) {
   EXPECT_LT(Median(translation), 1.15 * pixel.translation_deg);
 }
 
+// Bad bearings and pixels a distortion cannot unproject are misuse: every entry point throws,
+// naming the entry. Hopeless but valid bearings (no parallax, pure noise, rays beyond 90 deg) fail
+// with a message or succeed with a finite pose, never crash.
+TEST(BearingObservations, BadInputThrowsAndHopelessInputFails) {
+  SyntheticSceneOptions scene_options;
+  scene_options.num_points = 60;
+  scene_options.outlier_ratio = 0.2;
+  std::mt19937_64 rng(4000);
+  const SyntheticScene scene = GenerateSyntheticScene(scene_options, &rng);
+  const ThreeViewObservations good = ToBearingObservations(scene);
+  const InitializeAndRefineOptions options;
+  auto expect_throw_naming = [&](const ThreeViewObservations& bad, const std::string& fragment) {
+    for (const InitialSolver solver : kInitialSolvers) {
+      RobustThreeViewOptions robust;
+      robust.solver = solver;
+      try {
+        EstimateThreeViewPoseRobust(bad, robust);
+        ADD_FAILURE() << "no throw for " << fragment << " (" << InitialSolverName(solver) << ")";
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+      }
+    }
+    EXPECT_THROW(InitializeAndRefine(bad, options), std::invalid_argument) << fragment;
+    EXPECT_THROW(
+        RefineThreeViewPose(bad, scene.ground_truth, scene.is_inlier, options.bundle_adjustment),
+        std::invalid_argument)
+        << fragment;
+  };
+  ThreeViewObservations bad = good;
+  bad.bearings[1][5] = Eigen::Vector3d(NAN, 0.0, 1.0);
+  expect_throw_naming(bad, "bearings[1][5] is not finite");
+  bad = good;
+  bad.bearings[2][0].setZero();
+  expect_throw_naming(bad, "bearings[2][0] is zero");
+  bad = good;
+  bad.bearings[0].pop_back();
+  expect_throw_naming(bad, "differ in size");
+  bad = good;
+  bad.pixels = scene.pixels;
+  expect_throw_naming(bad, "both pixels and bearings");
+  ThreeViewObservations folded = ToObservations(scene);
+  folded.cameras[2] = Camera::FromColmap("SIMPLE_RADIAL", {500.0, 320.0, 240.0, -0.5});
+  folded.pixels[2][3] = Eigen::Vector2d(320.0 + 500.0, 240.0);
+  expect_throw_naming(folded, "pixels[2][3] cannot be unprojected");
+
+  // Hopeless: every view sees the same directions (no baseline), pure noise, and the same with
+  // every ray turned beyond 90 deg (z < 0).
+  ThreeViewObservations no_parallax = good;
+  no_parallax.bearings[1] = no_parallax.bearings[2] = no_parallax.bearings[0];
+  ThreeViewObservations noise = good;
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (auto& view : noise.bearings) {
+    for (Eigen::Vector3d& b : view) b = Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
+  }
+  ThreeViewObservations backward = good;
+  for (auto& view : backward.bearings) {
+    for (Eigen::Vector3d& b : view) b.z() = -b.z();
+  }
+  for (const ThreeViewObservations* hopeless : {&no_parallax, &noise, &backward}) {
+    for (const InitialSolver solver : kInitialSolvers) {
+      InitializeAndRefineOptions o;
+      o.robust.solver = solver;
+      const ThreeViewEstimate estimate = InitializeAndRefine(*hopeless, o);
+      if (estimate.success) {
+        EXPECT_TRUE(estimate.refined.IsFinite()) << InitialSolverName(solver);
+      } else {
+        EXPECT_FALSE(estimate.message.empty()) << InitialSolverName(solver);
+      }
+    }
+  }
+  EXPECT_FALSE(InitializeAndRefine(no_parallax, options).success);
+  EXPECT_FALSE(InitializeAndRefine(noise, options).success);
+}
+
 }  // namespace
 }  // namespace trigrav

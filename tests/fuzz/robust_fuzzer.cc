@@ -51,14 +51,20 @@ RobustThreeViewOptions DecodeOptions(FuzzInput* input) {
   ransac.local_optimization = input->Byte() % 4 != 0;
   ransac.local_optimization_rounds = input->Index(6) - 1;
   ransac.local_optimization_threshold_multiplier = Choose(input, {1.0, 3.0});
+  ransac.min_inlier_ratio = Choose(input, {0.25, 0.0, 0.9});
+  options.max_bearing_error_deg = Choose(input, {0.1, 1.0, 1e-6});
+  options.check_gravity_after_success = input->Byte() % 4 == 0;
   return options;
 }
 
+// A synthetic scene as pixels, as bearings, or as pixels read through a camera of any model with
+// fuzzed distortion; or cameras, gravity and pixels from raw doubles. Then edits of every kind.
 ThreeViewObservations DecodeObservations(FuzzInput* input) {
   ThreeViewObservations observations;
-  if (input->Byte() % 2 == 0) {
+  const int mode = input->Index(4);
+  if (mode != 1) {
     if (auto scene = DecodeSyntheticScene(input, 1, kMaxTriplets)) {
-      observations = ToObservations(*scene);
+      observations = mode == 2 ? ToBearingObservations(*scene) : ToObservations(*scene);
     }
   } else {
     for (Camera& camera : observations.cameras) {
@@ -71,13 +77,34 @@ ThreeViewObservations DecodeObservations(FuzzInput* input) {
       for (Eigen::Vector2d& pixel : view) pixel = {input->Double(), input->Double()};
     }
   }
-  ApplyEdits<2>(input, &observations.pixels, &observations.gravity_in_cam);
+  if (mode == 3) {
+    for (Camera& camera : observations.cameras) {
+      const CameraModel model = kCameraModels[input->Index(static_cast<int>(kCameraModels.size()))];
+      const internal::CameraParamLayout layout = internal::ParamLayout(model);
+      std::array<double, kMaxCameraParams> params{};
+      params[layout.fx] = camera.FocalX();
+      params[layout.fy] = camera.FocalY();
+      params[layout.cx] = camera.params[2];
+      params[layout.cy] = camera.params[3];
+      for (int i = layout.distortion; i < NumCameraParams(model); ++i) {
+        params[i] = Choose(input, {0.0, -0.3, 0.1, 1e-3, input->Double()});
+      }
+      camera = Camera(model, params);
+    }
+  }
+  if (observations.HasBearings()) {
+    ApplyEdits<3>(input, &observations.bearings, &observations.gravity_in_cam);
+  } else {
+    ApplyEdits<2>(input, &observations.pixels, &observations.gravity_in_cam);
+  }
   for (int edit = input->Index(3); edit > 0; --edit) {
-    // PINHOLE parameters: fx, fy, cx, cy.
-    observations.cameras[input->Index(3)].params[input->Index(4)] = input->Double();
+    observations.cameras[input->Index(3)].params[input->Index(kMaxCameraParams)] = input->Double();
   }
   // Edits may add triplets; the harness stays small.
   for (auto& view : observations.pixels) {
+    view.resize(std::min<std::size_t>(view.size(), kMaxTriplets));
+  }
+  for (auto& view : observations.bearings) {
     view.resize(std::min<std::size_t>(view.size(), kMaxTriplets));
   }
   return observations;

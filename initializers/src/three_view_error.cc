@@ -4,6 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "observation_rays.h"
+
 namespace trigrav {
 
 bool TriangulateMidpoint(const std::array<Eigen::Vector3d, 3>& centers_in_ref,
@@ -52,21 +54,15 @@ bool TriangulateMidpoint(const std::array<Eigen::Vector3d, 3>& centers_in_ref,
 
 ThreeViewReprojectionError::ThreeViewReprojectionError(const ThreeViewObservations& observations)
     : bearings_(observations.HasBearings()), cameras_(observations.cameras) {
-  observations.Check();
-  const std::size_t n = observations.size();
+  internal::CheckAndUnproject(observations, &rays_);  // one unprojection per pixel
   for (int k = 0; k < 3; ++k) {
-    rays_[k].reserve(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const Eigen::Vector3d ray = observations.Ray(k, i);
-      rays_[k].push_back(bearings_ ? ray.normalized() : ray);
-    }
     if (bearings_) {
-      bearing_errors_[k].reserve(n);
+      bearing_errors_[k].reserve(rays_[k].size());
       for (const Eigen::Vector3d& ray : rays_[k]) bearing_errors_[k].emplace_back(ray);
     } else {
       pixels_[k] = observations.pixels[k];
     }
-    unit_rays_[k].reserve(n);
+    unit_rays_[k].reserve(rays_[k].size());
     for (const Eigen::Vector3d& ray : rays_[k]) unit_rays_[k].push_back(ray.normalized());
   }
 }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "input_checks.h"
+#include "observation_rays.h"
 
 namespace trigrav {
 
@@ -34,7 +35,7 @@ void CheckCamera(const Camera& camera, int k) {
   }
 }
 
-void CheckGravity(const Eigen::Vector3d& gravity, int k) {
+void CheckGravityDirection(const Eigen::Vector3d& gravity, int k) {
   if (internal::IsUsableDirection(gravity)) return;
   const std::string name = "gravity_in_cam[" + std::to_string(k) + "] is ";
   if (!gravity.allFinite()) Fail(name + "not finite");
@@ -43,14 +44,21 @@ void CheckGravity(const Eigen::Vector3d& gravity, int k) {
        std::to_string(k + 1) + "'s own frame");
 }
 
-void CheckPixels(const Camera& camera, const std::vector<Eigen::Vector2d>& pixels, int k) {
+// Unprojects the pixels into *rays (when not null), throwing for one that cannot be.
+void CheckPixels(const Camera& camera,
+                 const std::vector<Eigen::Vector2d>& pixels,
+                 int k,
+                 std::vector<Eigen::Vector3d>* rays) {
   for (std::size_t n = 0; n < pixels.size(); ++n) {
     if (!pixels[n].allFinite()) Fail(Entry("pixels", k, n) + " is not finite");
     // Pinhole rays have z = 1, so they are usable unless a finite pixel far from the principal
     // point (or a focal length near the smallest double) overflows the ray or its squared length
     // (found by tests/fuzz).
     Eigen::Vector3d ray;
-    if (camera.Unproject(pixels[n], &ray) && internal::IsUsableDirection(ray)) continue;
+    if (camera.Unproject(pixels[n], &ray) && internal::IsUsableDirection(ray)) {
+      if (rays != nullptr) rays->push_back(ray);
+      continue;
+    }
     Fail(Entry("pixels", k, n) +
          (camera.IsPinhole()
               ? " is too far from the principal point for the focal length (its ray overflows)"
@@ -80,15 +88,21 @@ Eigen::Vector3d ThreeViewObservations::Ray(int k, std::size_t n) const {
   return ray;
 }
 
-void ThreeViewObservations::Check() const {
-  const bool bearing_input = HasBearings();
+void ThreeViewObservations::Check() const { internal::CheckAndUnproject(*this, nullptr); }
+
+namespace internal {
+
+void CheckAndUnproject(const ThreeViewObservations& observations,
+                       std::array<std::vector<Eigen::Vector3d>, 3>* rays) {
+  const auto& [cameras, gravity_in_cam, pixels, bearings] = observations;
+  const bool bearing_input = observations.HasBearings();
   for (int k = 0; k < 3; ++k) {
-    CheckGravity(gravity_in_cam[k], k);
+    CheckGravityDirection(gravity_in_cam[k], k);
     if (bearing_input && !pixels[k].empty()) {
       Fail("both pixels and bearings are given: give one of them");
     }
     const std::size_t size_k = bearing_input ? bearings[k].size() : pixels[k].size();
-    if (size_k != size()) {
+    if (size_k != observations.size()) {
       const auto& sizes = [&](auto& v) {
         std::ostringstream message;
         message << (bearing_input ? "bearings" : "pixels") << " of the three views differ in size ("
@@ -97,13 +111,23 @@ void ThreeViewObservations::Check() const {
       };
       Fail(bearing_input ? sizes(bearings) : sizes(pixels));
     }
+    std::vector<Eigen::Vector3d>* rays_k = rays != nullptr ? &(*rays)[k] : nullptr;
+    if (rays_k != nullptr) {
+      rays_k->clear();
+      rays_k->reserve(size_k);
+    }
     if (bearing_input) {
       CheckBearings(bearings[k], k);
+      if (rays_k != nullptr) {
+        for (const Eigen::Vector3d& b : bearings[k]) rays_k->push_back(b.normalized());
+      }
     } else {
       CheckCamera(cameras[k], k);
-      CheckPixels(cameras[k], pixels[k], k);
+      CheckPixels(cameras[k], pixels[k], k, rays_k);
     }
   }
 }
+
+}  // namespace internal
 
 }  // namespace trigrav

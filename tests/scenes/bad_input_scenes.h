@@ -213,7 +213,7 @@ inline Input MakeInput(Geometry geometry, int num_triplets) {
       Eigen::Vector2d pixel(500.0 * p.x() / p.z() + 320.0, 500.0 * p.y() / p.z() + 240.0);
       if (geometry == Geometry::kAllOutliers) pixel = Eigen::Vector2d(random_u(rng), random_v(rng));
       observations.pixels[k].push_back(pixel);
-      input.rays[k].push_back(PinholeCamera{500.0, 500.0, 320.0, 240.0}.Ray(pixel));
+      input.rays[k].push_back(Camera().Ray(pixel));
     }
   }
   input.has_truth = geometry != Geometry::kAllOutliers;

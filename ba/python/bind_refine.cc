@@ -1,0 +1,254 @@
+// Bundle adjustment options and summary, the refine-only call, InitializeAndRefine and its batch
+// form on a thread pool.
+
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bindings.h"
+#include "numpy_input.h"
+#include "trigrav/ba/initialize_and_refine.h"
+#include "trigrav/ba/refine_three_view_pose.h"
+#include "trigrav/ba/three_view_bundle_adjustment.h"
+#include "trigrav/ba/three_view_covariance.h"
+#include "trigrav/evaluation/parallel_for.h"
+
+namespace trigrav::python {
+namespace {
+
+using BundleOptions = ThreeViewBundleAdjustmentOptions;
+
+void BindBundleAdjustmentOptions(py::module_& m) {
+  OptionsClass<BundleOptions> options(
+      m, "ThreeViewBundleAdjustmentOptions",
+      "Three-view bundle adjustment: rotation model, loss, sigmas, Ceres solver settings.");
+  py::enum_<BundleOptions::RotationModel>(options.cls(), "RotationModel")
+      .value("YAW_ONLY", BundleOptions::RotationModel::kYawOnly,
+             "pitch and roll as the gravity says; one yaw per camera")
+      .value("GRAVITY_PRIOR", BundleOptions::RotationModel::kGravityPrior,
+             "free rotations with a gravity prior of sigma gravity_sigma_deg");
+  py::enum_<BundleOptions::LossType>(options.cls(), "LossType")
+      .value("NONE", BundleOptions::LossType::kNone)
+      .value("HUBER", BundleOptions::LossType::kHuber)
+      .value("CAUCHY", BundleOptions::LossType::kCauchy);
+  py::enum_<ceres::LinearSolverType>(options.cls(), "LinearSolverType",
+                                     "Ceres' linear solver (ceres::LinearSolverType).")
+      .value("DENSE_NORMAL_CHOLESKY", ceres::DENSE_NORMAL_CHOLESKY)
+      .value("DENSE_QR", ceres::DENSE_QR)
+      .value("SPARSE_NORMAL_CHOLESKY", ceres::SPARSE_NORMAL_CHOLESKY)
+      .value("DENSE_SCHUR", ceres::DENSE_SCHUR)
+      .value("SPARSE_SCHUR", ceres::SPARSE_SCHUR)
+      .value("ITERATIVE_SCHUR", ceres::ITERATIVE_SCHUR)
+      .value("CGNR", ceres::CGNR);
+  options.Field("rotation_model", &BundleOptions::rotation_model, "RotationModel (YAW_ONLY)")
+      .Field("loss", &BundleOptions::loss, "LossType (HUBER)")
+      .Field("loss_scale_px", &BundleOptions::loss_scale_px, "loss scale on pixel residuals (2)")
+      .Field("pixel_sigma_px", &BundleOptions::pixel_sigma_px,
+             "pixel noise weighting the gravity prior and scaling the covariance (1)")
+      .Field("loss_scale_deg", &BundleOptions::loss_scale_deg, "the same for bearings (0.1)")
+      .Field("bearing_sigma_deg", &BundleOptions::bearing_sigma_deg, "(0.05)")
+      .Field("gravity_sigma_deg", &BundleOptions::gravity_sigma_deg,
+             "IMU angular sigma of the gravity prior (0.5)")
+      .Field("compute_covariance", &BundleOptions::compute_covariance,
+             "also the refined pose's covariance (False)")
+      .Field("max_num_iterations", &BundleOptions::max_num_iterations, "(50)")
+      .Field("num_threads", &BundleOptions::num_threads, "Ceres threads per problem (1)")
+      .Field("linear_solver_type", &BundleOptions::linear_solver_type,
+             "LinearSolverType (DENSE_SCHUR)")
+      .Field("function_tolerance", &BundleOptions::function_tolerance, "(1e-8)")
+      .Field("gradient_tolerance", &BundleOptions::gradient_tolerance, "(1e-10)")
+      .Field("parameter_tolerance", &BundleOptions::parameter_tolerance, "(1e-10)")
+      .Finish(&BundleOptions::Check);
+}
+
+void BindRefinement(py::module_& m) {
+  py::class_<ThreeViewBundleAdjustmentSummary>(m, "ThreeViewBundleAdjustmentSummary",
+                                               "What a bundle adjustment did.")
+      .def_readonly("success", &ThreeViewBundleAdjustmentSummary::success)
+      .def_readonly("message", &ThreeViewBundleAdjustmentSummary::message)
+      .def_readonly("num_points", &ThreeViewBundleAdjustmentSummary::num_points)
+      .def_readonly("num_residual_blocks", &ThreeViewBundleAdjustmentSummary::num_residual_blocks)
+      .def_readonly("solve_time_s", &ThreeViewBundleAdjustmentSummary::solve_time_s)
+      .def_property_readonly("initial_cost", &ThreeViewBundleAdjustmentSummary::InitialCost)
+      .def_property_readonly("final_cost", &ThreeViewBundleAdjustmentSummary::FinalCost)
+      .def_property_readonly("iterations", &ThreeViewBundleAdjustmentSummary::Iterations)
+      .def("brief_report", &ThreeViewBundleAdjustmentSummary::BriefReport)
+      .def(
+          "full_report",
+          [](const ThreeViewBundleAdjustmentSummary& s) { return s.ceres_summary.FullReport(); },
+          "Ceres' full report")
+      .def("__repr__", [](const ThreeViewBundleAdjustmentSummary& s) {
+        return "ThreeViewBundleAdjustmentSummary(success=" +
+               std::string(s.success ? "True" : "False") + ", " + s.BriefReport() + ")";
+      });
+
+  py::class_<ThreeViewRefinement>(m, "ThreeViewRefinement",
+                                  "Result of a three-view bundle adjustment.")
+      .def_readonly("pose", &ThreeViewRefinement::pose, "the refined pose, |C2| = 1")
+      .def_property_readonly(
+          "triplets",
+          [](const ThreeViewRefinement& r) {
+            return py::array_t<int>(r.triplets.size(), r.triplets.data());
+          },
+          "indices of the triplets in the problem")
+      .def_property_readonly(
+          "points_in_cam1", [](const ThreeViewRefinement& r) { return ToArray(r.points_in_cam1); },
+          "refined points (one row per entry of triplets), camera 1's frame")
+      .def_property_readonly(
+          "residual_norms", [](const ThreeViewRefinement& r) { return ToArray(r.residual_norms); },
+          "per entry of triplets: residual norms in views 1, 2, 3 (px; deg for bearings)")
+      .def_readonly("residual_rms", &ThreeViewRefinement::residual_rms)
+      .def_readonly("relative_scale", &ThreeViewRefinement::relative_scale, "|C3| / |C2|")
+      .def_property_readonly(
+          "covariance", [](const ThreeViewRefinement& r) { return r.covariance; },
+          "7 x 7 (YAW_ONLY: yaw2, yaw3, u2 (2), C3 (3)) or 11 x 11 (GRAVITY_PRIOR: omega2, "
+          "omega3, u2, C3); shape (0, 0) when not computed")
+      .def_readonly("summary", &ThreeViewRefinement::summary)
+      .def("__repr__", [](const ThreeViewRefinement& r) {
+        return "ThreeViewRefinement(success=" + std::string(r.summary.success ? "True" : "False") +
+               ", triplets=" + std::to_string(r.triplets.size()) +
+               ", residual_rms=" + std::string(py::repr(py::float_(r.residual_rms))) + ")";
+      });
+
+  m.def(
+      "refine_three_view_pose",
+      [](const ThreeViewObservations& observations, const ThreeViewPose& initial,
+         const py::object& inliers, const BundleOptions& options) {
+        const std::vector<char> mask = ToMask(inliers, "inliers");
+        py::gil_scoped_release release;
+        return RefineThreeViewPose(observations, initial, mask, options);
+      },
+      py::arg("observations"), py::arg("initial"), py::arg("inliers"),
+      py::arg("options") = BundleOptions(),
+      "Refine-only: one three-view bundle adjustment of `initial` on the triplets whose inliers "
+      "entry is set (bool array of len(observations)). ValueError for invalid input; a failure "
+      "gives summary.success = False with the reason.");
+  m.def(
+      "three_view_pose_difference",
+      [](BundleOptions::RotationModel model, const ThreeViewPose& pose,
+         const ThreeViewPose& reference, const py::object& gravity_in_cam) {
+        return Eigen::VectorXd(ThreeViewPoseDifference(
+            model, pose, reference, ToThreeVectors(gravity_in_cam, "gravity_in_cam")));
+      },
+      py::arg("rotation_model"), py::arg("pose"), py::arg("reference"), py::arg("gravity_in_cam"),
+      "pose - reference in the coordinates of the covariance of `rotation_model`, to first "
+      "order.");
+}
+
+void BindInitializeAndRefine(py::module_& m) {
+  OptionsClass<InitializeAndRefineOptions>(
+      m, "InitializeAndRefineOptions",
+      "initialize_and_refine: the robust estimate, then bundle adjustment of its inliers.")
+      .Field("robust", &InitializeAndRefineOptions::robust, "RobustThreeViewOptions")
+      .Field("refine", &InitializeAndRefineOptions::refine, "False stops after RANSAC (True)")
+      .Field("reclassification_rounds", &InitializeAndRefineOptions::reclassification_rounds,
+             "re-classify and refine again while the inlier set changes, up to this many times "
+             "(1)")
+      .Field("bundle_adjustment", &InitializeAndRefineOptions::bundle_adjustment,
+             "ThreeViewBundleAdjustmentOptions")
+      .Finish(&InitializeAndRefineOptions::Check);
+
+  py::class_<ThreeViewEstimateTimings>(m, "ThreeViewEstimateTimings",
+                                       "Wall-clock seconds of each stage of the C++ call.")
+      .def_readonly("ransac_s", &ThreeViewEstimateTimings::ransac_s)
+      .def_readonly("refinement_s", &ThreeViewEstimateTimings::refinement_s)
+      .def_readonly("total_s", &ThreeViewEstimateTimings::total_s)
+      .def("__repr__", [](const ThreeViewEstimateTimings& t) {
+        return "ThreeViewEstimateTimings(ransac_s=" +
+               std::string(py::repr(py::float_(t.ransac_s))) +
+               ", refinement_s=" + std::string(py::repr(py::float_(t.refinement_s))) +
+               ", total_s=" + std::string(py::repr(py::float_(t.total_s))) + ")";
+      });
+
+  py::class_<ThreeViewEstimate>(m, "ThreeViewEstimate", "Result of initialize_and_refine.")
+      .def_readonly("success", &ThreeViewEstimate::success)
+      .def_readonly("message", &ThreeViewEstimate::message,
+                    "why not, when not success; a note when the refinement fell back")
+      .def_readonly("initial", &ThreeViewEstimate::initial, "the RANSAC winner")
+      .def_property_readonly(
+          "initial_inliers",
+          [](const ThreeViewEstimate& e) { return MaskToArray(e.initial_inliers); },
+          "bool array: inliers of the RANSAC winner")
+      .def_readonly("ransac", &ThreeViewEstimate::ransac)
+      .def_readonly("gravity", &ThreeViewEstimate::gravity)
+      .def_readonly("refined", &ThreeViewEstimate::refined,
+                    "the answer: the refined pose (the initial one if not refined)")
+      .def_property_readonly(
+          "inliers", [](const ThreeViewEstimate& e) { return MaskToArray(e.inliers); },
+          "bool array: inliers of refined")
+      .def_readonly("num_inliers", &ThreeViewEstimate::num_inliers)
+      .def_readonly("refinement", &ThreeViewEstimate::refinement,
+                    "the bundle adjustment that produced refined (covariance, residuals, summary)")
+      .def_readonly("refinement_runs", &ThreeViewEstimate::refinement_runs)
+      .def_readonly("timings", &ThreeViewEstimate::timings)
+      .def("__repr__", [](const ThreeViewEstimate& e) {
+        return "ThreeViewEstimate(success=" + std::string(e.success ? "True" : "False") +
+               ", num_inliers=" + std::to_string(e.num_inliers) +
+               ", message=" + std::string(py::repr(py::str(e.message))) + ")";
+      });
+
+  m.def("initialize_and_refine", &InitializeAndRefine, py::arg("observations"),
+        py::arg("options") = InitializeAndRefineOptions(), py::call_guard<py::gil_scoped_release>(),
+        "Robust estimate (RANSAC over options.robust.solver) refined by three-view bundle "
+        "adjustment on its inliers. ValueError for invalid observations or options; numerical "
+        "failure gives success = False with a message. The same seed gives bit-identical "
+        "results.");
+  m.def(
+      "initialize_and_refine_batch",
+      [](const py::sequence& batch, const InitializeAndRefineOptions& options, int num_threads) {
+        if (num_threads < 0) throw py::value_error("trigrav: num_threads must be >= 0");
+        // The Python objects are held until the end, so the pointers stay valid.
+        std::vector<py::object> held;
+        std::vector<const ThreeViewObservations*> items;
+        for (std::size_t i = 0; i < py::len(batch); ++i) {
+          held.push_back(batch[i]);
+          const py::object& item = held.back();
+          if (!py::isinstance<ThreeViewObservations>(item)) {
+            throw py::value_error("trigrav: batch[" + std::to_string(i) +
+                                  "]: expected ThreeViewObservations, got " +
+                                  std::string(py::str(py::type::of(item))));
+          }
+          items.push_back(&item.cast<const ThreeViewObservations&>());
+        }
+        std::vector<ThreeViewEstimate> estimates(items.size());
+        std::vector<std::string> errors(items.size());
+        {
+          py::gil_scoped_release release;
+          const int threads =
+              num_threads > 0 ? num_threads
+                              : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+          ParallelFor(items.size(), std::min<int>(threads, static_cast<int>(items.size())),
+                      [&](std::size_t i) {
+                        try {
+                          estimates[i] = InitializeAndRefine(*items[i], options);
+                        } catch (const std::exception& e) {
+                          errors[i] = e.what();
+                        }
+                      });
+        }
+        for (std::size_t i = 0; i < errors.size(); ++i) {
+          if (!errors[i].empty()) {
+            throw py::value_error("trigrav: batch[" + std::to_string(i) + "]: " + errors[i]);
+          }
+        }
+        return estimates;
+      },
+      py::arg("batch"), py::arg("options") = InitializeAndRefineOptions(),
+      py::arg("num_threads") = 0,
+      "initialize_and_refine on each ThreeViewObservations of `batch` on num_threads worker "
+      "threads (0: one per core), the GIL released. Returns the list of ThreeViewEstimate, equal "
+      "to the serial calls. ValueError naming the first bad item.");
+}
+
+}  // namespace
+
+void BindRefine(py::module_& m) {
+  BindBundleAdjustmentOptions(m);
+  BindRefinement(m);
+  BindInitializeAndRefine(m);
+}
+
+}  // namespace trigrav::python

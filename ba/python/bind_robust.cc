@@ -1,0 +1,121 @@
+// RansacOptions, RobustThreeViewOptions, the RANSAC statistics and EstimateThreeViewPoseRobust.
+
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <string>
+
+#include "bindings.h"
+#include "numpy_input.h"
+#include "trigrav/initializers/ransac.h"
+#include "trigrav/initializers/robust_three_view.h"
+
+namespace trigrav::python {
+namespace {
+
+void BindRansacOptions(py::module_& m) {
+  OptionsClass<RansacOptions>(m, "RansacOptions",
+                              "Options of the RANSAC loop (MSAC scoring, adaptive stopping, "
+                              "local optimisation). Errors in pixels (degrees for bearings: "
+                              "RobustThreeViewOptions.max_bearing_error_deg).")
+      .Field("max_error", &RansacOptions::max_error,
+             "inlier threshold, px: the largest reprojection error over the three views (2)")
+      .Field("confidence", &RansacOptions::confidence, "of an all-inlier sample (0.9999)")
+      .Field("min_iterations", &RansacOptions::min_iterations, "(20)")
+      .Field("max_iterations", &RansacOptions::max_iterations, "(10000)")
+      .Field("seed", &RansacOptions::seed, "same seed, same data: bit-identical result (0)")
+      .Field("min_inlier_ratio", &RansacOptions::min_inlier_ratio,
+             "a best model below this inlier ratio is a failure (0.25); 0 turns it off")
+      .Field("local_optimization", &RansacOptions::local_optimization, "(True)")
+      .Field("local_optimization_rounds", &RansacOptions::local_optimization_rounds, "(3)")
+      .Field("local_optimization_threshold_multiplier",
+             &RansacOptions::local_optimization_threshold_multiplier, "(3)")
+      .Finish(&RansacOptions::Check);
+}
+
+void BindRobustOptions(py::module_& m) {
+  OptionsClass<RobustThreeViewOptions> options(
+      m, "RobustThreeViewOptions",
+      "The robust estimate: solver, RANSAC (ransac.max_error is the one inlier threshold), tilt "
+      "correction and gravity check.");
+  options.Field("solver", &RobustThreeViewOptions::solver, "InitialSolver (TRIFOCAL_3PT)")
+      .Field("ransac", &RobustThreeViewOptions::ransac, "RansacOptions")
+      .Field("max_bearing_error_deg", &RobustThreeViewOptions::max_bearing_error_deg,
+             "inlier threshold for bearing observations, degrees (0.1)")
+      .Field("max_tilt_correction_deg", &RobustThreeViewOptions::max_tilt_correction_deg,
+             "bound on the relative tilt local optimisation may correct, degrees; "
+             "TILT_CORRECTION_FROM_GRAVITY_SIGMA (-1, the default) derives it")
+      .Field("max_gravity_inconsistency_deg",
+             &RobustThreeViewOptions::max_gravity_inconsistency_deg,
+             "how far a camera's gravity may be from what the images say, degrees; "
+             "GRAVITY_CONSISTENCY_FROM_GRAVITY_SIGMA (-1, the default) derives it, inf skips it")
+      .Field("check_gravity_after_success", &RobustThreeViewOptions::check_gravity_after_success,
+             "run the gravity check also after a success (False)")
+      .Finish(&RobustThreeViewOptions::Check);
+  options.cls().attr("TILT_CORRECTION_FROM_GRAVITY_SIGMA") =
+      RobustThreeViewOptions::kTiltCorrectionFromGravitySigma;
+  options.cls().attr("GRAVITY_CONSISTENCY_FROM_GRAVITY_SIGMA") =
+      RobustThreeViewOptions::kGravityConsistencyFromGravitySigma;
+}
+
+void BindResults(py::module_& m) {
+  py::class_<RansacStatistics>(m, "RansacStatistics", "What a RANSAC run did.")
+      .def_readonly("num_inliers", &RansacStatistics::num_inliers)
+      .def_readonly("iterations", &RansacStatistics::iterations, "samples drawn")
+      .def_readonly("num_models_scored", &RansacStatistics::num_models_scored)
+      .def_readonly("num_local_optimizations", &RansacStatistics::num_local_optimizations)
+      .def_readonly("msac_cost", &RansacStatistics::msac_cost)
+      .def("__repr__", [](const RansacStatistics& s) {
+        return "RansacStatistics(num_inliers=" + std::to_string(s.num_inliers) +
+               ", iterations=" + std::to_string(s.iterations) +
+               ", num_models_scored=" + std::to_string(s.num_models_scored) +
+               ", num_local_optimizations=" + std::to_string(s.num_local_optimizations) +
+               ", msac_cost=" + std::string(py::repr(py::float_(s.msac_cost))) + ")";
+      });
+
+  py::class_<GravityConsistency>(m, "GravityConsistency",
+                                 "What a gravity-free estimate says about the given gravity.")
+      .def_readonly("measured", &GravityConsistency::measured)
+      .def_readonly("num_inliers", &GravityConsistency::num_inliers)
+      .def_readonly("pair_inconsistency_deg", &GravityConsistency::pair_inconsistency_deg,
+                    "pairs (1,2), (1,3), (2,3)")
+      .def_readonly("rotation_disagreement_deg", &GravityConsistency::rotation_disagreement_deg,
+                    "views 2 and 3")
+      .def_readonly("inconsistent_camera", &GravityConsistency::inconsistent_camera,
+                    "1, 2 or 3; 0 when none is named")
+      .def("__repr__", [](const GravityConsistency& g) {
+        return "GravityConsistency(measured=" + std::string(g.measured ? "True" : "False") +
+               ", inconsistent_camera=" + std::to_string(g.inconsistent_camera) + ")";
+      });
+
+  py::class_<RobustThreeViewEstimate>(m, "RobustThreeViewEstimate",
+                                      "Result of estimate_three_view_pose_robust.")
+      .def_readonly("success", &RobustThreeViewEstimate::success)
+      .def_readonly("message", &RobustThreeViewEstimate::message, "why not, when not success")
+      .def_readonly("pose", &RobustThreeViewEstimate::pose, "|cam2_from_cam1.center| = 1")
+      .def_property_readonly(
+          "inliers", [](const RobustThreeViewEstimate& e) { return MaskToArray(e.inliers); },
+          "bool array, one entry per triplet")
+      .def_readonly("ransac", &RobustThreeViewEstimate::ransac)
+      .def_readonly("gravity", &RobustThreeViewEstimate::gravity)
+      .def("__repr__", [](const RobustThreeViewEstimate& e) {
+        return "RobustThreeViewEstimate(success=" + std::string(e.success ? "True" : "False") +
+               ", num_inliers=" + std::to_string(e.ransac.num_inliers) +
+               ", message=" + std::string(py::repr(py::str(e.message))) + ")";
+      });
+}
+
+}  // namespace
+
+void BindRobust(py::module_& m) {
+  BindRansacOptions(m);
+  BindRobustOptions(m);
+  BindResults(m);
+  m.def("estimate_three_view_pose_robust", &EstimateThreeViewPoseRobust, py::arg("observations"),
+        py::arg("options") = RobustThreeViewOptions(), py::call_guard<py::gil_scoped_release>(),
+        "RANSAC over the chosen solver, every method scored by the three-view reprojection error "
+        "(pixels; degrees for bearings). ValueError for invalid observations or options; "
+        "numerical failure gives success = False with a message.");
+}
+
+}  // namespace trigrav::python

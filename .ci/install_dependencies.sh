@@ -7,6 +7,9 @@ packages=(
   libeigen3-dev libceres-dev libsuitesparse-dev libgoogle-glog-dev libgflags-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-matplotlib
+  pybind11-dev python3-pybind11 python3-dev python3-numpy  # the Python module trigrav
+  python3-pytest         # its tests
+  python3-opencv         # the Python KITTI example (SIFT); the module never uses it
   libopencv-dev          # KITTI tool only (SIFT features); the library never links it
   libopengv-dev          # optional peer rows in the comparisons; the library never links it
   clang libclang-rt-14-dev  # libFuzzer and the sanitizer runtime for the hardening step

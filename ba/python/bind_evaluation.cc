@@ -80,7 +80,7 @@ void BindSyntheticScenes(py::module_& m) {
         std::mt19937_64 rng(seed);
         return GenerateSyntheticScene(options, &rng);
       },
-      py::arg("options") = SyntheticSceneOptions(), py::arg("seed") = 0,
+      py::arg_v("options", SyntheticSceneOptions(), "SyntheticSceneOptions()"), py::arg("seed") = 0,
       py::call_guard<py::gil_scoped_release>(),
       "One scene, drawn with std::mt19937_64(seed) (the C++ GenerateSyntheticScene with that "
       "generator).");

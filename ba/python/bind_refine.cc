@@ -122,7 +122,7 @@ void BindRefinement(py::module_& m) {
         return RefineThreeViewPose(observations, initial, mask, options);
       },
       py::arg("observations"), py::arg("initial"), py::arg("inliers"),
-      py::arg("options") = BundleOptions(),
+      py::arg_v("options", BundleOptions(), "ThreeViewBundleAdjustmentOptions()"),
       "Refine-only: one three-view bundle adjustment of `initial` on the triplets whose inliers "
       "entry is set (bool array of len(observations)). ValueError for invalid input; a failure "
       "gives summary.success = False with the reason.");
@@ -191,7 +191,8 @@ void BindInitializeAndRefine(py::module_& m) {
       });
 
   m.def("initialize_and_refine", &InitializeAndRefine, py::arg("observations"),
-        py::arg("options") = InitializeAndRefineOptions(), py::call_guard<py::gil_scoped_release>(),
+        py::arg_v("options", InitializeAndRefineOptions(), "InitializeAndRefineOptions()"),
+        py::call_guard<py::gil_scoped_release>(),
         "Robust estimate (RANSAC over options.robust.solver) refined by three-view bundle "
         "adjustment on its inliers. ValueError for invalid observations or options; numerical "
         "failure gives success = False with a message. The same seed gives bit-identical "
@@ -236,7 +237,8 @@ void BindInitializeAndRefine(py::module_& m) {
         }
         return estimates;
       },
-      py::arg("batch"), py::arg("options") = InitializeAndRefineOptions(),
+      py::arg("batch"),
+      py::arg_v("options", InitializeAndRefineOptions(), "InitializeAndRefineOptions()"),
       py::arg("num_threads") = 0,
       "initialize_and_refine on each ThreeViewObservations of `batch` on num_threads worker "
       "threads (0: one per core), the GIL released. Returns the list of ThreeViewEstimate, equal "

@@ -112,7 +112,8 @@ void BindRobust(py::module_& m) {
   BindRobustOptions(m);
   BindResults(m);
   m.def("estimate_three_view_pose_robust", &EstimateThreeViewPoseRobust, py::arg("observations"),
-        py::arg("options") = RobustThreeViewOptions(), py::call_guard<py::gil_scoped_release>(),
+        py::arg_v("options", RobustThreeViewOptions(), "RobustThreeViewOptions()"),
+        py::call_guard<py::gil_scoped_release>(),
         "RANSAC over the chosen solver, every method scored by the three-view reprojection error "
         "(pixels; degrees for bearings). ValueError for invalid observations or options; "
         "numerical failure gives success = False with a message.");

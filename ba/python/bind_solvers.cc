@@ -142,7 +142,7 @@ void BindSolvers(py::module_& m) {
             });
       },
       py::arg("x1"), py::arg("x2"), py::arg("x3"), py::arg("gravity_in_cam") = py::none(),
-      py::arg("options") = Trifocal4ptOptions(),
+      py::arg_v("options", Trifocal4ptOptions(), "Trifocal4ptOptions()"),
       (std::string("The paper's linear 4-point trifocal solver: 4 or more triplets.") + kGravityDoc)
           .c_str());
   m.def(

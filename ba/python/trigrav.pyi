@@ -1,0 +1,502 @@
+"""Type stub of the trigrav module (ba/python/README.md). Arrays are float64 numpy arrays; inputs
+accept any array-like of real numbers of the shape given in the comments."""
+
+from typing import ClassVar, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+ArrayLike = npt.ArrayLike
+Array = npt.NDArray[np.float64]
+Mask = npt.NDArray[np.bool_]
+
+CAMERA_MODELS: Tuple[str, ...]
+
+class CameraPose:
+    """x_cam = R @ x_ref + t; center = -R.T @ t."""
+    R: Array  # 3 x 3
+    t: Array  # (3,)
+    def __init__(self, R: Optional[ArrayLike] = None, t: Optional[ArrayLike] = None) -> None: ...
+    @property
+    def center(self) -> Array: ...
+    def inverse(self) -> CameraPose: ...
+    def apply(self, points_in_ref: ArrayLike) -> Array: ...  # N x 3 -> N x 3
+    def is_finite(self) -> bool: ...
+    def __mul__(self, b_from_a: CameraPose) -> CameraPose: ...
+
+class ThreeViewPose:
+    cam2_from_cam1: CameraPose
+    cam3_from_cam1: CameraPose
+    def __init__(self, cam2_from_cam1: CameraPose = ..., cam3_from_cam1: CameraPose = ...) -> None: ...
+    def cam3_from_cam2(self) -> CameraPose: ...
+    def is_finite(self) -> bool: ...
+
+class Camera:
+    """COLMAP model name and parameter list, e.g. Camera('PINHOLE', [fx, fy, cx, cy])."""
+    def __init__(self, model: str, params: Sequence[float]) -> None: ...
+    @staticmethod
+    def pinhole(fx: float, fy: float, cx: float, cy: float) -> Camera: ...
+    @property
+    def model(self) -> str: ...
+    @property
+    def params(self) -> List[float]: ...
+    @property
+    def focal_x(self) -> float: ...
+    @property
+    def focal_y(self) -> float: ...
+    @property
+    def is_pinhole(self) -> bool: ...
+    def project(self, points_in_cam: ArrayLike) -> Array: ...  # N x 3 -> N x 2
+    def unproject(self, pixels: ArrayLike) -> Array: ...  # N x 2 -> N x 3 rays (u, v, 1)
+
+class ThreeViewObservations:
+    pixels: List[Array]  # three N x 2 (copies)
+    bearings: List[Array]  # three N x 3 (copies)
+    cameras: List[Camera]  # set with one Camera or three
+    gravity_in_cam: Array  # 3 x 3, row k: gravity (down) in camera k + 1
+    def __init__(
+        self,
+        *,
+        pixels: Optional[Sequence[ArrayLike]] = None,
+        cameras: Union[Camera, Sequence[Camera], None] = None,
+        gravity_in_cam: Optional[ArrayLike] = None,
+        bearings: Optional[Sequence[ArrayLike]] = None,
+    ) -> None: ...
+    def has_bearings(self) -> bool: ...
+    def check(self) -> None: ...
+    def __len__(self) -> int: ...
+
+def rotation_about_y(theta_rad: float) -> Array: ...
+def gravity_alignment_from_gravity(gravity_in_cam: ArrayLike) -> Array: ...
+def gravity_alignment_from_pitch_roll(pitch_rad: float, roll_rad: float) -> Array: ...
+def gravity_in_camera(gravity_alignment: ArrayLike) -> Array: ...
+def align_rays(gravity_alignment: ArrayLike, rays_in_cam: ArrayLike) -> Array: ...
+def unalign_pose(
+    aligned_cam_from_aligned_ref: CameraPose,
+    gravity_alignment_ref: ArrayLike,
+    gravity_alignment_cam: ArrayLike,
+) -> CameraPose: ...
+
+class InitialSolver:
+    TRIFOCAL_3PT: ClassVar[InitialSolver]
+    TRIFOCAL_3PT_SEXTIC: ClassVar[InitialSolver]
+    TRIFOCAL_4PT: ClassVar[InitialSolver]
+    TRIFOCAL_LINEAR: ClassVar[InitialSolver]
+    ESSENTIAL_5PT: ClassVar[InitialSolver]
+    ESSENTIAL_8PT: ClassVar[InitialSolver]
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+    @property
+    def short_name(self) -> str: ...
+    @property
+    def sample_size(self) -> int: ...
+    @property
+    def uses_gravity(self) -> bool: ...
+    @staticmethod
+    def from_short_name(name: str) -> InitialSolver: ...
+
+class Trifocal4ptRecovery:
+    ENFORCED: ClassVar[Trifocal4ptRecovery]
+    LEAST_SQUARES: ClassVar[Trifocal4ptRecovery]
+    PAPER_CLOSED_FORM: ClassVar[Trifocal4ptRecovery]
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
+class Trifocal4ptOptions:
+    recovery: Trifocal4ptRecovery
+    resolve_translations: bool
+    epipole_iterations: int
+    polish_iterations: int
+    def __init__(
+        self,
+        *,
+        recovery: Trifocal4ptRecovery = ...,
+        resolve_translations: bool = ...,
+        epipole_iterations: int = ...,
+        polish_iterations: int = ...,
+    ) -> None: ...
+
+# x1, x2, x3: N x 3 rays (one row per triplet); gravity_in_cam: 3 x 3 (row k: camera k + 1), or
+# None for gravity-aligned rays.
+def solve_trifocal_3pt(
+    x1: ArrayLike, x2: ArrayLike, x3: ArrayLike, gravity_in_cam: Optional[ArrayLike] = None
+) -> List[ThreeViewPose]: ...
+def solve_trifocal_3pt_sextic(
+    x1: ArrayLike, x2: ArrayLike, x3: ArrayLike, gravity_in_cam: Optional[ArrayLike] = None
+) -> List[ThreeViewPose]: ...
+def solve_trifocal_4pt(
+    x1: ArrayLike,
+    x2: ArrayLike,
+    x3: ArrayLike,
+    gravity_in_cam: Optional[ArrayLike] = None,
+    options: Trifocal4ptOptions = ...,
+) -> List[ThreeViewPose]: ...
+def solve_trifocal_linear(x1: ArrayLike, x2: ArrayLike, x3: ArrayLike) -> List[ThreeViewPose]: ...
+def solve_essential_5pt(x1: ArrayLike, x2: ArrayLike) -> List[CameraPose]: ...
+def solve_essential_8pt(x1: ArrayLike, x2: ArrayLike) -> List[CameraPose]: ...
+def combine_two_view_pairs(
+    x1: ArrayLike,
+    x2: ArrayLike,
+    x3: ArrayLike,
+    pair12: Sequence[CameraPose],
+    pair13: Sequence[CameraPose],
+) -> Tuple[List[ThreeViewPose], List[float]]: ...
+
+class RansacOptions:
+    max_error: float
+    confidence: float
+    min_iterations: int
+    max_iterations: int
+    seed: int
+    min_inlier_ratio: float
+    local_optimization: bool
+    local_optimization_rounds: int
+    local_optimization_threshold_multiplier: float
+    def __init__(
+        self,
+        *,
+        max_error: float = 2.0,
+        confidence: float = 0.9999,
+        min_iterations: int = 20,
+        max_iterations: int = 10000,
+        seed: int = 0,
+        min_inlier_ratio: float = 0.25,
+        local_optimization: bool = True,
+        local_optimization_rounds: int = 3,
+        local_optimization_threshold_multiplier: float = 3.0,
+    ) -> None: ...
+
+class RobustThreeViewOptions:
+    TILT_CORRECTION_FROM_GRAVITY_SIGMA: ClassVar[float]
+    GRAVITY_CONSISTENCY_FROM_GRAVITY_SIGMA: ClassVar[float]
+    solver: InitialSolver
+    ransac: RansacOptions
+    max_bearing_error_deg: float
+    max_tilt_correction_deg: float
+    max_gravity_inconsistency_deg: float
+    check_gravity_after_success: bool
+    def __init__(
+        self,
+        *,
+        solver: InitialSolver = ...,
+        ransac: RansacOptions = ...,
+        max_bearing_error_deg: float = 0.1,
+        max_tilt_correction_deg: float = -1.0,
+        max_gravity_inconsistency_deg: float = -1.0,
+        check_gravity_after_success: bool = False,
+    ) -> None: ...
+
+class RansacStatistics:
+    @property
+    def num_inliers(self) -> int: ...
+    @property
+    def iterations(self) -> int: ...
+    @property
+    def num_models_scored(self) -> int: ...
+    @property
+    def num_local_optimizations(self) -> int: ...
+    @property
+    def msac_cost(self) -> float: ...
+
+class GravityConsistency:
+    @property
+    def measured(self) -> bool: ...
+    @property
+    def num_inliers(self) -> int: ...
+    @property
+    def pair_inconsistency_deg(self) -> List[float]: ...
+    @property
+    def rotation_disagreement_deg(self) -> List[float]: ...
+    @property
+    def inconsistent_camera(self) -> int: ...
+
+class RobustThreeViewEstimate:
+    @property
+    def success(self) -> bool: ...
+    @property
+    def message(self) -> str: ...
+    @property
+    def pose(self) -> ThreeViewPose: ...
+    @property
+    def inliers(self) -> Mask: ...
+    @property
+    def ransac(self) -> RansacStatistics: ...
+    @property
+    def gravity(self) -> GravityConsistency: ...
+
+def estimate_three_view_pose_robust(
+    observations: ThreeViewObservations, options: RobustThreeViewOptions = ...
+) -> RobustThreeViewEstimate: ...
+
+class ThreeViewBundleAdjustmentOptions:
+    class RotationModel:
+        YAW_ONLY: ClassVar[ThreeViewBundleAdjustmentOptions.RotationModel]
+        GRAVITY_PRIOR: ClassVar[ThreeViewBundleAdjustmentOptions.RotationModel]
+        def __init__(self, value: int) -> None: ...
+        @property
+        def name(self) -> str: ...
+        @property
+        def value(self) -> int: ...
+    class LossType:
+        NONE: ClassVar[ThreeViewBundleAdjustmentOptions.LossType]
+        HUBER: ClassVar[ThreeViewBundleAdjustmentOptions.LossType]
+        CAUCHY: ClassVar[ThreeViewBundleAdjustmentOptions.LossType]
+        def __init__(self, value: int) -> None: ...
+        @property
+        def name(self) -> str: ...
+        @property
+        def value(self) -> int: ...
+    class LinearSolverType:
+        DENSE_NORMAL_CHOLESKY: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]
+        DENSE_QR: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]
+        SPARSE_NORMAL_CHOLESKY: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]
+        DENSE_SCHUR: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]
+        SPARSE_SCHUR: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]
+        ITERATIVE_SCHUR: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]
+        CGNR: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]
+        def __init__(self, value: int) -> None: ...
+        @property
+        def name(self) -> str: ...
+        @property
+        def value(self) -> int: ...
+    rotation_model: ThreeViewBundleAdjustmentOptions.RotationModel
+    loss: ThreeViewBundleAdjustmentOptions.LossType
+    loss_scale_px: float
+    pixel_sigma_px: float
+    loss_scale_deg: float
+    bearing_sigma_deg: float
+    gravity_sigma_deg: float
+    compute_covariance: bool
+    max_num_iterations: int
+    num_threads: int
+    linear_solver_type: ThreeViewBundleAdjustmentOptions.LinearSolverType
+    function_tolerance: float
+    gradient_tolerance: float
+    parameter_tolerance: float
+    def __init__(
+        self,
+        *,
+        rotation_model: ThreeViewBundleAdjustmentOptions.RotationModel = ...,
+        loss: ThreeViewBundleAdjustmentOptions.LossType = ...,
+        loss_scale_px: float = 2.0,
+        pixel_sigma_px: float = 1.0,
+        loss_scale_deg: float = 0.1,
+        bearing_sigma_deg: float = 0.05,
+        gravity_sigma_deg: float = 0.5,
+        compute_covariance: bool = False,
+        max_num_iterations: int = 50,
+        num_threads: int = 1,
+        linear_solver_type: ThreeViewBundleAdjustmentOptions.LinearSolverType = ...,
+        function_tolerance: float = 1e-8,
+        gradient_tolerance: float = 1e-10,
+        parameter_tolerance: float = 1e-10,
+    ) -> None: ...
+
+class ThreeViewBundleAdjustmentSummary:
+    @property
+    def success(self) -> bool: ...
+    @property
+    def message(self) -> str: ...
+    @property
+    def num_points(self) -> int: ...
+    @property
+    def num_residual_blocks(self) -> int: ...
+    @property
+    def solve_time_s(self) -> float: ...
+    @property
+    def initial_cost(self) -> float: ...
+    @property
+    def final_cost(self) -> float: ...
+    @property
+    def iterations(self) -> int: ...
+    def brief_report(self) -> str: ...
+    def full_report(self) -> str: ...
+
+class ThreeViewRefinement:
+    @property
+    def pose(self) -> ThreeViewPose: ...
+    @property
+    def triplets(self) -> npt.NDArray[np.int32]: ...
+    @property
+    def points_in_cam1(self) -> Array: ...  # len(triplets) x 3
+    @property
+    def residual_norms(self) -> Array: ...  # len(triplets) x 3
+    @property
+    def residual_rms(self) -> float: ...
+    @property
+    def relative_scale(self) -> float: ...
+    @property
+    def covariance(self) -> Array: ...  # 7 x 7, 11 x 11, or 0 x 0
+    @property
+    def summary(self) -> ThreeViewBundleAdjustmentSummary: ...
+
+def refine_three_view_pose(
+    observations: ThreeViewObservations,
+    initial: ThreeViewPose,
+    inliers: ArrayLike,
+    options: ThreeViewBundleAdjustmentOptions = ...,
+) -> ThreeViewRefinement: ...
+def three_view_pose_difference(
+    rotation_model: ThreeViewBundleAdjustmentOptions.RotationModel,
+    pose: ThreeViewPose,
+    reference: ThreeViewPose,
+    gravity_in_cam: ArrayLike,
+) -> Array: ...
+
+class InitializeAndRefineOptions:
+    robust: RobustThreeViewOptions
+    refine: bool
+    reclassification_rounds: int
+    bundle_adjustment: ThreeViewBundleAdjustmentOptions
+    def __init__(
+        self,
+        *,
+        robust: RobustThreeViewOptions = ...,
+        refine: bool = True,
+        reclassification_rounds: int = 1,
+        bundle_adjustment: ThreeViewBundleAdjustmentOptions = ...,
+    ) -> None: ...
+
+class ThreeViewEstimateTimings:
+    @property
+    def ransac_s(self) -> float: ...
+    @property
+    def refinement_s(self) -> float: ...
+    @property
+    def total_s(self) -> float: ...
+
+class ThreeViewEstimate:
+    @property
+    def success(self) -> bool: ...
+    @property
+    def message(self) -> str: ...
+    @property
+    def initial(self) -> ThreeViewPose: ...
+    @property
+    def initial_inliers(self) -> Mask: ...
+    @property
+    def ransac(self) -> RansacStatistics: ...
+    @property
+    def gravity(self) -> GravityConsistency: ...
+    @property
+    def refined(self) -> ThreeViewPose: ...
+    @property
+    def inliers(self) -> Mask: ...
+    @property
+    def num_inliers(self) -> int: ...
+    @property
+    def refinement(self) -> ThreeViewRefinement: ...
+    @property
+    def refinement_runs(self) -> int: ...
+    @property
+    def timings(self) -> ThreeViewEstimateTimings: ...
+
+def initialize_and_refine(
+    observations: ThreeViewObservations, options: InitializeAndRefineOptions = ...
+) -> ThreeViewEstimate: ...
+def initialize_and_refine_batch(
+    batch: Sequence[ThreeViewObservations],
+    options: InitializeAndRefineOptions = ...,
+    num_threads: int = 0,
+) -> List[ThreeViewEstimate]: ...
+
+class SyntheticSceneOptions:
+    num_points: int
+    focal_px: float
+    opencv_distortion: List[float]
+    width_px: float
+    height_px: float
+    max_yaw_deg: float
+    max_tilt_deg: float
+    max_center_m: float
+    min_depth_m: float
+    max_depth_m: float
+    min_depth_all_views_m: float
+    pixel_noise_px: float
+    imu_pitch_noise_deg: float
+    imu_roll_noise_deg: float
+    outlier_ratio: float
+    def __init__(
+        self,
+        *,
+        num_points: int = 4,
+        focal_px: float = 500.0,
+        opencv_distortion: Sequence[float] = (0.0, 0.0, 0.0, 0.0),
+        width_px: float = 640.0,
+        height_px: float = 480.0,
+        max_yaw_deg: float = 10.0,
+        max_tilt_deg: float = 10.0,
+        max_center_m: float = 10.0,
+        min_depth_m: float = 10.0,
+        max_depth_m: float = 40.0,
+        min_depth_all_views_m: float = 1.0,
+        pixel_noise_px: float = 0.0,
+        imu_pitch_noise_deg: float = 0.0,
+        imu_roll_noise_deg: float = 0.0,
+        outlier_ratio: float = 0.0,
+    ) -> None: ...
+
+class SyntheticScene:
+    @property
+    def ground_truth(self) -> ThreeViewPose: ...
+    @property
+    def cam_from_world(self) -> List[Array]: ...
+    @property
+    def center_in_world(self) -> List[Array]: ...
+    @property
+    def pitch_rad(self) -> List[float]: ...
+    @property
+    def roll_rad(self) -> List[float]: ...
+    @property
+    def yaw_rad(self) -> List[float]: ...
+    @property
+    def points_in_world(self) -> Array: ...
+    @property
+    def pixels(self) -> List[Array]: ...
+    @property
+    def rays(self) -> List[Array]: ...
+    @property
+    def gravity_alignment_true(self) -> List[Array]: ...
+    @property
+    def gravity_alignment_measured(self) -> List[Array]: ...
+    @property
+    def gravity_in_cam_measured(self) -> Array: ...
+    @property
+    def camera(self) -> Camera: ...
+    @property
+    def is_inlier(self) -> Mask: ...
+
+def generate_synthetic_scene(options: SyntheticSceneOptions = ..., seed: int = 0) -> SyntheticScene: ...
+def to_observations(scene: SyntheticScene) -> ThreeViewObservations: ...
+def to_bearing_observations(scene: SyntheticScene) -> ThreeViewObservations: ...
+
+def rotation_error_deg(R_gt: ArrayLike, R: ArrayLike) -> float: ...
+def direction_error_deg(a_gt: ArrayLike, a: ArrayLike) -> float: ...
+
+class ThreeViewPoseErrors:
+    @property
+    def rotation_deg(self) -> List[float]: ...
+    @property
+    def translation_deg(self) -> List[float]: ...
+    @property
+    def relative_scale(self) -> float: ...
+    def max_rotation_deg(self) -> float: ...
+    def max_translation_deg(self) -> float: ...
+    def max_angle_deg(self) -> float: ...
+
+def compute_three_view_pose_errors(ground_truth: ThreeViewPose, estimate: ThreeViewPose) -> ThreeViewPoseErrors: ...
+
+class YawTiltErrorDeg:
+    @property
+    def yaw_deg(self) -> float: ...
+    @property
+    def tilt_deg(self) -> float: ...
+
+def split_rotation_error_deg(R_gt: ArrayLike, R: ArrayLike, gravity_in_cam: ArrayLike) -> YawTiltErrorDeg: ...
+def three_view_errors(observations: ThreeViewObservations, pose: ThreeViewPose) -> Array: ...

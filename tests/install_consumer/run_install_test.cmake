@@ -2,6 +2,8 @@
 #   -DTRIGRAV_BINARY_DIR=<build>   install that build as it is, or
 #   -DTRIGRAV_SOURCE_DIR=<source> -DSHARED=ON   first build the libraries alone from the source
 #                                               (BUILD_SHARED_LIBS=ON, no tests or tools)
+#   -DPYTHON=<interpreter> -DPYTHON_INSTALL_DIR=<relative folder>   also import the installed
+#                                               Python module with that interpreter
 file(REMOVE_RECURSE ${WORK_DIR})
 function(run)
   execute_process(COMMAND ${ARGV} RESULT_VARIABLE result)
@@ -10,10 +12,14 @@ function(run)
   endif()
 endfunction()
 if(TRIGRAV_SOURCE_DIR)
+  set(python_args -DTRIGRAV_BUILD_PYTHON=OFF)
+  if(PYTHON)
+    set(python_args -DTRIGRAV_BUILD_PYTHON=ON -DPython_EXECUTABLE=${PYTHON})
+  endif()
   set(TRIGRAV_BINARY_DIR ${WORK_DIR}/trigrav)
   run(${CMAKE_COMMAND} -S ${TRIGRAV_SOURCE_DIR} -B ${TRIGRAV_BINARY_DIR} -DCMAKE_BUILD_TYPE=Release
       -DBUILD_SHARED_LIBS=${SHARED} -DTRIGRAV_BUILD_TESTS=OFF -DTRIGRAV_BUILD_EXAMPLES=OFF
-      -DTRIGRAV_BUILD_BENCHMARKS=OFF)
+      -DTRIGRAV_BUILD_BENCHMARKS=OFF ${python_args})
   run(${CMAKE_COMMAND} --build ${TRIGRAV_BINARY_DIR} -j2)
 endif()
 run(${CMAKE_COMMAND} --install ${TRIGRAV_BINARY_DIR} --prefix ${WORK_DIR}/prefix)
@@ -22,3 +28,12 @@ run(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build
     -DCMAKE_BUILD_RPATH=${WORK_DIR}/prefix/lib)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/consumer)
+if(PYTHON)
+  # The module and its stub are in the prefix's site folder, load from there and run a call.
+  set(site ${WORK_DIR}/prefix/${PYTHON_INSTALL_DIR})
+  if(NOT EXISTS ${site}/trigrav.pyi)
+    message(FATAL_ERROR "trigrav.pyi is not installed in ${site}")
+  endif()
+  run(${CMAKE_COMMAND} -E env PYTHONPATH=${site} ${PYTHON} -c
+      "import os, trigrav; assert os.path.dirname(trigrav.__file__) == os.path.realpath('${site}'), trigrav.__file__; scene = trigrav.generate_synthetic_scene(trigrav.SyntheticSceneOptions(num_points=50), 1); assert trigrav.initialize_and_refine(trigrav.to_observations(scene)).success; print('import trigrav from', trigrav.__file__)")
+endif()

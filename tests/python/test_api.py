@@ -1,0 +1,165 @@
+"""The Python-shaped API: options, results, solvers, cameras, gravity helpers, metrics, stubs."""
+
+import ast
+import math
+import os
+import pydoc
+
+import numpy as np
+import pytest
+
+import trigrav
+from conftest import make_scene
+
+
+def test_options_from_keywords_nest_and_print_readably():
+    options = trigrav.InitializeAndRefineOptions(
+        robust=trigrav.RobustThreeViewOptions(ransac=trigrav.RansacOptions(max_error=1.5, seed=7)),
+        bundle_adjustment=trigrav.ThreeViewBundleAdjustmentOptions(gravity_sigma_deg=0.1))
+    assert options.robust.ransac.max_error == 1.5 and options.robust.ransac.seed == 7
+    assert options.bundle_adjustment.gravity_sigma_deg == 0.1
+    options.robust.ransac.max_error = 3.0  # nested attributes are the options' own
+    assert options.robust.ransac.max_error == 3.0
+    text = repr(options)
+    assert text.startswith("InitializeAndRefineOptions(robust=RobustThreeViewOptions(")
+    assert "ransac=RansacOptions(max_error=3.0," in text
+    assert "solver=InitialSolver.TRIFOCAL_3PT" in text
+    assert "rotation_model=RotationModel.YAW_ONLY" in text
+    assert repr(trigrav.RansacOptions()) == (
+        "RansacOptions(max_error=2.0, confidence=0.9999, min_iterations=20, "
+        "max_iterations=10000, seed=0, min_inlier_ratio=0.25, local_optimization=True, "
+        "local_optimization_rounds=3, local_optimization_threshold_multiplier=3.0)")
+
+
+def test_initialize_and_refine_result_recovers_the_truth(scene, observations):
+    options = trigrav.InitializeAndRefineOptions(
+        bundle_adjustment=trigrav.ThreeViewBundleAdjustmentOptions(compute_covariance=True))
+    estimate = trigrav.initialize_and_refine(observations, options)
+    assert estimate.success, estimate.message
+    errors = trigrav.compute_three_view_pose_errors(scene.ground_truth, estimate.refined)
+    assert errors.max_rotation_deg() < 0.2 and errors.max_translation_deg() < 1.0
+    assert estimate.inliers.dtype == np.bool_ and estimate.inliers.shape == (len(observations),)
+    assert estimate.inliers.sum() == estimate.num_inliers
+    # Every triplet the scene made an outlier is rejected.
+    assert not np.any(estimate.inliers & ~scene.is_inlier)
+    assert math.isclose(np.linalg.norm(estimate.refined.cam2_from_cam1.center), 1.0)
+    pose = estimate.refined.cam2_from_cam1
+    np.testing.assert_allclose(pose.center, -pose.R.T @ pose.t, atol=1e-15)
+    refinement = estimate.refinement
+    assert refinement.covariance.shape == (7, 7)
+    np.testing.assert_allclose(refinement.covariance, refinement.covariance.T)
+    assert refinement.points_in_cam1.shape == (len(refinement.triplets), 3)
+    assert refinement.residual_norms.shape == (len(refinement.triplets), 3)
+    assert refinement.summary.success and refinement.summary.iterations > 0
+    assert 0.0 < estimate.timings.total_s
+    assert estimate.ransac.num_inliers == estimate.initial_inliers.sum()
+
+
+def test_every_solver_finds_the_true_pose():
+    scene = make_scene(2, num_points=8, outlier_ratio=0.0)
+    truth = scene.ground_truth
+    gravity = scene.gravity_in_cam_measured
+    # Noise-free rays for the minimal solvers.
+    exact = trigrav.generate_synthetic_scene(trigrav.SyntheticSceneOptions(num_points=8), 2)
+    rays = exact.rays
+
+    def best_error(solutions):
+        return min(trigrav.compute_three_view_pose_errors(exact.ground_truth, s).max_angle_deg()
+                   for s in solutions)
+
+    three = [r[:3] for r in rays]
+    assert best_error(trigrav.solve_trifocal_3pt(*three, gravity_in_cam=exact.gravity_in_cam_measured)) < 1e-6
+    assert best_error(trigrav.solve_trifocal_3pt_sextic(*three, gravity_in_cam=exact.gravity_in_cam_measured)) < 1e-6
+    assert best_error(trigrav.solve_trifocal_4pt(*[r[:4] for r in rays], gravity_in_cam=exact.gravity_in_cam_measured)) < 1e-6
+    assert best_error(trigrav.solve_trifocal_linear(*rays)) < 1e-6
+    aligned = [trigrav.align_rays(a, r[:3]) for a, r in zip(exact.gravity_alignment_measured, rays)]
+    upright = trigrav.solve_trifocal_3pt(*aligned)
+    unaligned = [trigrav.ThreeViewPose(
+        trigrav.unalign_pose(s.cam2_from_cam1, exact.gravity_alignment_measured[0], exact.gravity_alignment_measured[1]),
+        trigrav.unalign_pose(s.cam3_from_cam1, exact.gravity_alignment_measured[0], exact.gravity_alignment_measured[2]))
+        for s in upright]
+    assert best_error(unaligned) < 1e-6
+    pair12 = trigrav.solve_essential_5pt(rays[0][:5], rays[1][:5])
+    pair13 = trigrav.solve_essential_8pt(rays[0], rays[2])
+    assert len(pair13) == 1
+    poses, residuals = trigrav.combine_two_view_pairs(*rays, pair12, pair13)
+    assert len(poses) == len(residuals) and best_error(poses) < 1e-6
+    assert truth is not None and gravity.shape == (3, 3)
+
+
+def test_cameras_from_colmap_round_trip():
+    camera = trigrav.Camera("OPENCV", [700, 710, 320, 240, -0.2, 0.05, 0.001, -0.002])
+    assert camera.model == "OPENCV" and camera.params == [700, 710, 320, 240, -0.2, 0.05, 0.001, -0.002]
+    assert camera.focal_x == 700 and not camera.is_pinhole
+    assert repr(camera) == "Camera('OPENCV', [700, 710, 320, 240, -0.20000000000000001, 0.050000000000000003, 0.001, -0.002])"
+    points = np.array([[0.3, -0.2, 4.0], [-1.0, 0.5, 6.0]])
+    rays = camera.unproject(camera.project(points))
+    np.testing.assert_allclose(rays, points / points[:, 2:], atol=1e-10)
+    assert trigrav.CAMERA_MODELS == ("SIMPLE_PINHOLE", "PINHOLE", "SIMPLE_RADIAL", "RADIAL",
+                                     "OPENCV", "OPENCV_FISHEYE")
+    assert trigrav.Camera.pinhole(500, 500, 320, 240).model == "PINHOLE"
+
+
+def test_gravity_helpers_and_metrics():
+    g = np.array([0.1, 0.9, -0.2])
+    alignment = trigrav.gravity_alignment_from_gravity(g)
+    np.testing.assert_allclose(alignment @ g, [0, np.linalg.norm(g), 0], atol=1e-15)
+    np.testing.assert_allclose(trigrav.gravity_in_camera(alignment), g / np.linalg.norm(g), atol=1e-15)
+    R = trigrav.rotation_about_y(0.1)
+    assert math.isclose(trigrav.rotation_error_deg(np.eye(3), R), math.degrees(0.1))
+    split = trigrav.split_rotation_error_deg(np.eye(3), R, [0, 1, 0])
+    assert math.isclose(split.yaw_deg, math.degrees(0.1)) and split.tilt_deg < 1e-12
+    assert math.isclose(trigrav.direction_error_deg([1, 0, 0], [0, 1, 0]), 90.0)
+    pitch_roll = trigrav.gravity_alignment_from_pitch_roll(0.0, 0.0)
+    np.testing.assert_array_equal(pitch_roll, np.eye(3))
+    pose = trigrav.CameraPose(R, [1, 2, 3])
+    np.testing.assert_allclose((pose * pose.inverse()).R, np.eye(3), atol=1e-15)
+    np.testing.assert_allclose(pose.apply(np.zeros((1, 3))), [[1, 2, 3]])
+
+
+def test_three_view_errors_mark_the_outliers(scene, observations):
+    errors = trigrav.three_view_errors(observations, scene.ground_truth)
+    assert errors.shape == (len(observations),)
+    assert np.all(errors[scene.is_inlier] < 3.0) and np.all(errors[~scene.is_inlier] > 3.0)
+
+
+def test_bearings_work_like_pixels(scene):
+    bearings = trigrav.to_bearing_observations(scene)
+    assert bearings.has_bearings() and len(bearings.bearings[0]) == len(scene.pixels[0])
+    estimate = trigrav.initialize_and_refine(bearings)
+    assert estimate.success
+    assert trigrav.compute_three_view_pose_errors(scene.ground_truth, estimate.refined).max_angle_deg() < 1.0
+
+
+def stub_names():
+    stub = os.path.join(os.path.dirname(trigrav.__file__), "trigrav.pyi")
+    tree = ast.parse(open(stub).read())
+    names = set()
+    for node in tree.body:
+        if isinstance(node, (ast.ClassDef, ast.FunctionDef)):
+            names.add(node.name)
+        elif isinstance(node, ast.AnnAssign):
+            names.add(node.target.id)
+    return tree, names
+
+
+def test_type_stub_covers_the_module():
+    tree, names = stub_names()
+    public = {name for name in dir(trigrav) if not name.startswith("_")}
+    assert public - names == set(), "names missing from trigrav.pyi"
+    assert names - public == set(), "names in trigrav.pyi the module lacks"
+    # Every method and property of every class is in its stub class.
+    for node in tree.body:
+        if isinstance(node, ast.ClassDef):
+            members = {n.name for n in node.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+            members |= {n.target.id for n in node.body if isinstance(n, ast.AnnAssign)}
+            cls = getattr(trigrav, node.name)
+            public_members = {m for m in vars(cls) if not m.startswith("_")}
+            assert public_members - members == set(), node.name
+
+
+def test_help_shows_signatures_and_docstrings():
+    text = pydoc.render_doc(trigrav.initialize_and_refine, renderer=pydoc.plaintext)
+    assert "initialize_and_refine(observations: trigrav.ThreeViewObservations" in text
+    assert "Robust estimate" in text
+    assert "N x 2" in trigrav.ThreeViewObservations.__init__.__doc__

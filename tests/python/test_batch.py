@@ -1,0 +1,33 @@
+"""initialize_and_refine_batch equals the serial calls, for any number of threads."""
+
+import numpy as np
+
+import trigrav
+from conftest import make_scene, observations_from_numpy
+
+
+def assert_same_estimate(a, b):
+    assert a.success == b.success and a.message == b.message
+    assert a.num_inliers == b.num_inliers
+    np.testing.assert_array_equal(a.inliers, b.inliers)
+    for pose_a, pose_b in ((a.refined, b.refined), (a.initial, b.initial)):
+        for cam_a, cam_b in ((pose_a.cam2_from_cam1, pose_b.cam2_from_cam1),
+                             (pose_a.cam3_from_cam1, pose_b.cam3_from_cam1)):
+            assert cam_a.R.tobytes() == cam_b.R.tobytes()
+            assert cam_a.t.tobytes() == cam_b.t.tobytes()
+
+
+def test_batch_equals_serial_runs():
+    batch = [observations_from_numpy(make_scene(seed, num_points=80)) for seed in range(7)]
+    # One scene that fails (pure outliers): failures come back in place too.
+    batch.append(observations_from_numpy(make_scene(99, num_points=40, outlier_ratio=1.0)))
+    options = trigrav.InitializeAndRefineOptions(
+        robust=trigrav.RobustThreeViewOptions(ransac=trigrav.RansacOptions(seed=4)))
+    serial = [trigrav.initialize_and_refine(observations, options) for observations in batch]
+    assert sum(estimate.success for estimate in serial) == 7 and not serial[-1].success
+    for threads in (1, 2, 3, 0):
+        estimates = trigrav.initialize_and_refine_batch(batch, options, num_threads=threads)
+        assert len(estimates) == len(batch)
+        for estimate, reference in zip(estimates, serial):
+            assert_same_estimate(estimate, reference)
+    assert trigrav.initialize_and_refine_batch([], options, num_threads=2) == []

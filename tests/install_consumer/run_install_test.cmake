@@ -29,11 +29,8 @@ run(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/consumer)
 if(PYTHON)
-  # The module and its stub are in the prefix's site folder, load from there and run a call.
+  # The module and its stub in the prefix's site folder: imported from there, a call run.
   set(site ${WORK_DIR}/prefix/${PYTHON_INSTALL_DIR})
-  if(NOT EXISTS ${site}/trigrav.pyi)
-    message(FATAL_ERROR "trigrav.pyi is not installed in ${site}")
-  endif()
-  run(${CMAKE_COMMAND} -E env PYTHONPATH=${site} ${PYTHON} -c
-      "import os, trigrav; assert os.path.dirname(trigrav.__file__) == os.path.realpath('${site}'), trigrav.__file__; scene = trigrav.generate_synthetic_scene(trigrav.SyntheticSceneOptions(num_points=50), 1); assert trigrav.initialize_and_refine(trigrav.to_observations(scene)).success; print('import trigrav from', trigrav.__file__)")
+  run(${CMAKE_COMMAND} -E env PYTHONPATH=${site} PYTHONDONTWRITEBYTECODE=1 ${PYTHON}
+      ${CMAKE_CURRENT_LIST_DIR}/check_python_module.py ${site})
 endif()

@@ -163,3 +163,13 @@ def test_help_shows_signatures_and_docstrings():
     assert "initialize_and_refine(observations: trigrav.ThreeViewObservations" in text
     assert "Robust estimate" in text
     assert "N x 2" in trigrav.ThreeViewObservations.__init__.__doc__
+
+
+def test_root_readme_python_snippet_runs_as_written(capsys):
+    readme = os.path.join(os.path.dirname(__file__), "..", "..", "README.md")
+    section = open(readme).read().split("\n## Python\n", 1)[1]
+    snippet = section.split("```python\n", 1)[1].split("```", 1)[0]
+    exec(compile(snippet, "README.md", "exec"), {})
+    printed = capsys.readouterr().out
+    assert printed.startswith("ThreeViewEstimate(success=True")
+    assert "ThreeViewPoseErrors(rotation_deg=" in printed

@@ -50,6 +50,7 @@ def main():
         for pixels, camera, gravity in inputs:
             observations = trigrav.ThreeViewObservations(pixels=pixels, cameras=camera,
                                                          gravity_in_cam=gravity)
+            estimate = None  # the previous result is freed outside the timed region
             start = time.perf_counter()
             estimate = trigrav.initialize_and_refine(observations, options)
             elapsed = time.perf_counter() - start
@@ -58,6 +59,7 @@ def main():
             relative["call"].append(overhead / estimate.timings.total_s)
             cpp_times.append(estimate.timings.total_s)
 
+            estimate = observations = None
             start = time.perf_counter()
             observations = trigrav.ThreeViewObservations(pixels=pixels, cameras=camera,
                                                          gravity_in_cam=gravity)

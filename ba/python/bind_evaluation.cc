@@ -85,9 +85,10 @@ void BindSyntheticScenes(py::module_& m) {
       "One scene, drawn with std::mt19937_64(seed) (the C++ GenerateSyntheticScene with that "
       "generator).");
   m.def("to_observations", &ToObservations, py::arg("scene"),
+        py::call_guard<py::gil_scoped_release>(),
         "The scene as a pipeline sees it: cameras, measured gravity, noisy pixels.");
   m.def("to_bearing_observations", &ToBearingObservations, py::arg("scene"),
-        "The same as bearings (unit rays), no cameras.");
+        py::call_guard<py::gil_scoped_release>(), "The same as bearings (unit rays), no cameras.");
 }
 
 void BindMetrics(py::module_& m) {

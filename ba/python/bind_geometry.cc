@@ -126,11 +126,14 @@ void BindCamera(py::module_& m) {
           [](const Camera& camera, const py::object& points) {
             const std::vector<Eigen::Vector3d> in_cam = ToPoints3(points, "points_in_cam");
             std::vector<Eigen::Vector2d> pixels(in_cam.size());
-            for (std::size_t n = 0; n < in_cam.size(); ++n) {
-              if (!camera.Project(in_cam[n].data(), pixels[n].data())) {
-                throw py::value_error("trigrav: Camera.project: points_in_cam[" +
-                                      std::to_string(n) +
-                                      "] is not in front of the camera (z <= 0)");
+            {
+              py::gil_scoped_release release;
+              for (std::size_t n = 0; n < in_cam.size(); ++n) {
+                if (!camera.Project(in_cam[n].data(), pixels[n].data())) {
+                  throw py::value_error("trigrav: Camera.project: points_in_cam[" +
+                                        std::to_string(n) +
+                                        "] is not in front of the camera (z <= 0)");
+                }
               }
             }
             return ToArray(pixels);
@@ -141,11 +144,14 @@ void BindCamera(py::module_& m) {
           [](const Camera& camera, const py::object& pixels) {
             const std::vector<Eigen::Vector2d> in_image = ToPoints2(pixels, "pixels");
             std::vector<Eigen::Vector3d> rays(in_image.size());
-            for (std::size_t n = 0; n < in_image.size(); ++n) {
-              if (!camera.Unproject(in_image[n], &rays[n])) {
-                throw py::value_error("trigrav: Camera.unproject: pixels[" + std::to_string(n) +
-                                      "] cannot be unprojected (not finite, or outside the "
-                                      "model's image of the front hemisphere)");
+            {
+              py::gil_scoped_release release;
+              for (std::size_t n = 0; n < in_image.size(); ++n) {
+                if (!camera.Unproject(in_image[n], &rays[n])) {
+                  throw py::value_error("trigrav: Camera.unproject: pixels[" + std::to_string(n) +
+                                        "] cannot be unprojected (not finite, or outside the "
+                                        "model's image of the front hemisphere)");
+                }
               }
             }
             return ToArray(rays);
@@ -251,7 +257,7 @@ void BindObservations(py::module_& m) {
           "3 x 3: row k is gravity (down) in camera k + 1's frame (a copy)")
       .def("has_bearings", &ThreeViewObservations::HasBearings)
       .def("__len__", &ThreeViewObservations::size, "number of triplets")
-      .def("check", &ThreeViewObservations::Check,
+      .def("check", &ThreeViewObservations::Check, py::call_guard<py::gil_scoped_release>(),
            "ValueError naming the problem: sizes differ, unset cameras or gravity, NaN, pixels "
            "the camera cannot unproject, ...")
       .def("__repr__", [](const ThreeViewObservations& o) {

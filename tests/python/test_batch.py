@@ -31,3 +31,34 @@ def test_batch_equals_serial_runs():
         for estimate, reference in zip(estimates, serial):
             assert_same_estimate(estimate, reference)
     assert trigrav.initialize_and_refine_batch([], options, num_threads=2) == []
+
+
+def test_calls_release_the_gil():
+    """A Python thread runs while another is inside a call. With a switch interval of 100 s the
+    interpreter never takes the GIL from a thread, so the main thread, woken by the worker just
+    before its call, can only run during the call if the call released the GIL."""
+    import sys
+    import threading
+
+    batch = [observations_from_numpy(make_scene(seed, num_points=300)) for seed in range(8)]
+    calls = [lambda: trigrav.initialize_and_refine_batch(batch, num_threads=1),
+             lambda: [trigrav.initialize_and_refine(o) for o in batch][-1]]
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(100.0)
+    try:
+        for call in calls:
+            started, state = threading.Event(), {"finished": False}
+
+            def work():
+                started.set()
+                call()
+                state["finished"] = True
+
+            worker = threading.Thread(target=work)
+            worker.start()
+            started.wait()
+            ran_during_call = not state["finished"]
+            worker.join()
+            assert ran_during_call
+    finally:
+        sys.setswitchinterval(interval)

@@ -78,10 +78,10 @@ BearingResidual MakeResidual(const ThreeViewObservations& o, int k, int i, Beari
 // False if the observation cannot see the point or the result is not finite (Ceres then fails the
 // evaluation).
 template <typename Residual>
-bool EvaluateObservation(const Residual& residual,
-                         const Eigen::Vector3d& x,
-                         Eigen::Vector2d* r,
-                         Eigen::Matrix<double, 2, 3>* jacobian) {
+bool EvaluateByJets(const Residual& residual,
+                    const Eigen::Vector3d& x,
+                    Eigen::Vector2d* r,
+                    Eigen::Matrix<double, 2, 3>* jacobian) {
   using Jet = ceres::Jet<double, 3>;
   const Jet x_jet[3] = {Jet(x[0], 0), Jet(x[1], 1), Jet(x[2], 2)};
   Jet r_jet[2];
@@ -89,6 +89,35 @@ bool EvaluateObservation(const Residual& residual,
   for (int i = 0; i < 2; ++i) {
     (*r)[i] = r_jet[i].a;
     jacobian->row(i) = r_jet[i].v.transpose();
+  }
+  return r->allFinite() && jacobian->allFinite();
+}
+
+// The same, with the derivative in closed form where it is short (section 13.1): pinhole models,
+// u = fx X / Z + cx: du/dX = fx / Z, du/dZ = -fx X / Z^2 (v alike); distortion models by Jets.
+bool EvaluateObservation(const PixelResidual& residual,
+                         const Eigen::Vector3d& x,
+                         Eigen::Vector2d* r,
+                         Eigen::Matrix<double, 2, 3>* jacobian) {
+  if (!residual.camera.IsPinhole()) return EvaluateByJets(residual, x, r, jacobian);
+  if (!residual(x.data(), r->data())) return false;
+  const double inv_z = 1.0 / x.z();
+  const double fx = residual.camera.FocalX() * inv_z;
+  const double fy = residual.camera.FocalY() * inv_z;
+  *jacobian << fx, 0.0, -fx * x.x() * inv_z, 0.0, fy, -fy * x.y() * inv_z;
+  return r->allFinite() && jacobian->allFinite();
+}
+
+// Bearings, r_i = K (e_i . x) / (b . x) with K = 180 / pi: d r_i / dx = (K e_i - r_i b) / (b . x).
+bool EvaluateObservation(const BearingResidual& residual,
+                         const Eigen::Vector3d& x,
+                         Eigen::Vector2d* r,
+                         Eigen::Matrix<double, 2, 3>* jacobian) {
+  if (!residual(x.data(), r->data())) return false;
+  const Eigen::Matrix3d& frame = residual.frame();
+  const double inv_along = 1.0 / frame.row(2).dot(x);
+  for (int i = 0; i < 2; ++i) {
+    jacobian->row(i) = (kRadiansToDegrees * frame.row(i) - (*r)[i] * frame.row(2)) * inv_along;
   }
   return r->allFinite() && jacobian->allFinite();
 }

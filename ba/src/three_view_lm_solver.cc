@@ -503,8 +503,8 @@ void Engine<Residual, kRot>::Solve(ceres::Solver::Summary* summary) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
 
-  // Iteration 0 (Ceres' TrustRegionMinimizer::IterationZero): evaluate, fix the Jacobi scaling
-  // 1 / (1 + |column|) of every unknown.
+  // Ceres' trust-region loop (section 13.5). Iteration 0 (TrustRegionMinimizer::IterationZero):
+  // evaluate, fix the Jacobi scaling 1 / (1 + |column|) of every unknown.
   if (!Evaluate(x_, points_, &current_)) {
     summary->initial_cost = summary->final_cost = 0.0;
     summary->message = "Residual and Jacobian evaluation failed.";

@@ -91,12 +91,21 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
   }
 
   const auto refinement_start = std::chrono::steady_clock::now();
-  const ThreeViewReprojectionError error(observations);
+  const ThreeViewReprojectionError error(observations);  // the re-classification's
+  estimate.timings.reclassification_s = SecondsSince(refinement_start);
   const double threshold = options.robust.InlierThreshold(observations);
   std::vector<char> inliers = ransac.inliers;
+  ThreeViewEstimateTimings& timings = estimate.timings;
   for (int run = 0; run <= options.reclassification_rounds; ++run) {
+    // A later run starts from the last refinement's pose and points.
     ThreeViewRefinement refinement =
-        RefineThreeViewPose(observations, estimate.refined, inliers, options.bundle_adjustment);
+        run == 0 ? RefineThreeViewPose(observations, estimate.refined, inliers,
+                                       options.bundle_adjustment)
+                 : RefineThreeViewPose(observations, estimate.refined, inliers,
+                                       options.bundle_adjustment, estimate.refinement);
+    timings.build_s += refinement.build_s;
+    timings.solve_s += refinement.solve_s;
+    timings.covariance_s += refinement.covariance_s;
     if (!refinement.summary.success || !refinement.pose.IsFinite()) {
       if (run == 0) {
         estimate.message =
@@ -112,6 +121,7 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
     estimate.refinement = std::move(refinement);
     if (run == options.reclassification_rounds) break;
     // Re-classify against the refined pose; stop when nothing changes.
+    const auto reclassification_start = std::chrono::steady_clock::now();
     const ThreeViewReprojectionError::PreparedPose prepared =
         ThreeViewReprojectionError::Prepare(estimate.refined);
     std::vector<char> next(observations.size(), 0);
@@ -120,6 +130,7 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
       next[i] = error(prepared, i) <= threshold ? 1 : 0;
       num_next += next[i];
     }
+    timings.reclassification_s += SecondsSince(reclassification_start);
     if (next == inliers || num_next < MinimalSampleSize(options.robust.solver)) break;
     inliers.swap(next);
   }

@@ -1,6 +1,7 @@
 #include "trigrav/ba/refine_three_view_pose.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -9,10 +10,20 @@
 
 namespace trigrav {
 
-ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observations,
-                                        const ThreeViewPose& initial,
-                                        const std::vector<char>& inliers,
-                                        const ThreeViewBundleAdjustmentOptions& options) {
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Both overloads; known_* are the previous refinement's triplets and points (empty for none).
+ThreeViewRefinement Refine(const ThreeViewObservations& observations,
+                           const ThreeViewPose& initial,
+                           const std::vector<char>& inliers,
+                           const ThreeViewBundleAdjustmentOptions& options,
+                           const std::vector<int>& known_triplets,
+                           const std::vector<Eigen::Vector3d>& known_points) {
+  auto start = std::chrono::steady_clock::now();
   if (inliers.size() != observations.size()) {
     throw std::invalid_argument("trigrav: RefineThreeViewPose: the inlier mask has " +
                                 std::to_string(inliers.size()) + " entries for " +
@@ -28,11 +39,15 @@ ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observation
     refinement.summary.message = "no inlier triplets to refine on";
     return refinement;
   }
-  if (!adjuster.Build(initial)) {
+  const bool built = adjuster.Build(initial, known_triplets, known_points);
+  refinement.build_s = SecondsSince(start);
+  if (!built) {
     refinement.summary.message = adjuster.message();
     return refinement;
   }
+  start = std::chrono::steady_clock::now();
   refinement.summary = adjuster.Solve();
+  refinement.solve_s = SecondsSince(start);
   refinement.pose = adjuster.CurrentPose();
   refinement.triplets = adjuster.triplet_indices();
   refinement.points_in_cam1 = adjuster.points();
@@ -44,10 +59,30 @@ ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observation
   refinement.relative_scale = refinement.pose.cam3_from_cam1.Center().norm() /
                               refinement.pose.cam2_from_cam1.Center().norm();
   if (options.compute_covariance && refinement.summary.success) {
+    start = std::chrono::steady_clock::now();
     ComputeThreeViewPoseCovariance(&adjuster, options.ObservationSigma(observations),
                                    &refinement.covariance, &refinement.summary.message);
+    refinement.covariance_s = SecondsSince(start);
   }
   return refinement;
+}
+
+}  // namespace
+
+ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observations,
+                                        const ThreeViewPose& initial,
+                                        const std::vector<char>& inliers,
+                                        const ThreeViewBundleAdjustmentOptions& options) {
+  return Refine(observations, initial, inliers, options, {}, {});
+}
+
+ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observations,
+                                        const ThreeViewPose& initial,
+                                        const std::vector<char>& inliers,
+                                        const ThreeViewBundleAdjustmentOptions& options,
+                                        const ThreeViewRefinement& previous) {
+  return Refine(observations, initial, inliers, options, previous.triplets,
+                previous.points_in_cam1);
 }
 
 }  // namespace trigrav

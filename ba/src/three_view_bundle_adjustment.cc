@@ -9,6 +9,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "three_view_lm_solver.h"
 #include "trigrav/factors/angle_manifold.h"
 #include "trigrav/factors/reprojection_factors.h"
 #include "trigrav/initializers/gravity.h"
@@ -75,6 +76,7 @@ void ThreeViewBundleAdjustmentOptions::Check() const {
   require(function_tolerance >= 0.0, "function_tolerance must be >= 0");
   require(gradient_tolerance >= 0.0, "gradient_tolerance must be >= 0");
   require(parameter_tolerance >= 0.0, "parameter_tolerance must be >= 0");
+  require(engine == Engine::kCeres || engine == Engine::kDedicated, "unknown engine");
   require(
       rotation_model == RotationModel::kYawOnly || rotation_model == RotationModel::kGravityPrior,
       "unknown rotation_model");
@@ -144,7 +146,25 @@ ThreeViewBundleAdjuster::ThreeViewBundleAdjuster(const ThreeViewObservations& ob
 
 ThreeViewBundleAdjuster::~ThreeViewBundleAdjuster() = default;
 
-bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial) {
+bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial) { return Build(initial, {}, {}); }
+
+bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial,
+                                    const std::vector<int>& known_triplets,
+                                    const std::vector<Eigen::Vector3d>& known_points) {
+  if (known_triplets.size() != known_points.size()) {
+    throw std::invalid_argument(
+        "trigrav: ThreeViewBundleAdjuster::Build: known_triplets and known_points differ in size");
+  }
+  // known[i]: index into known_points of triplet i's point, -1 if none.
+  std::vector<int> known(observations_.size(), -1);
+  for (std::size_t j = 0; j < known_triplets.size(); ++j) {
+    const int i = known_triplets[j];
+    if (i < 0 || i >= static_cast<int>(known.size())) {
+      throw std::invalid_argument(
+          "trigrav: ThreeViewBundleAdjuster::Build: known triplet index out of range");
+    }
+    known[i] = static_cast<int>(j);
+  }
   built_ = false;
   problem_.reset();
   points_.clear();
@@ -185,19 +205,25 @@ bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial) {
   center[1] = start.cam2_from_cam1.Center();
   center[2] = start.cam3_from_cam1.Center();
 
-  // Triangulate; keep triplets in front of all three cameras.
+  // Known points (rescaled with the pose) or triangulated ones; keep triplets in front of all
+  // three cameras.
+  auto in_front = [&](int i, const Eigen::Vector3d& x) {
+    if (!x.allFinite()) return false;
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(error_.ObservationError(k, i, rotation[k] * (x - center[k])))) {
+        return false;
+      }
+    }
+    return true;
+  };
   points_.reserve(config_.triplets.size());
   for (const int i : config_.triplets) {
-    std::array<Eigen::Vector3d, 3> directions;
-    for (int k = 0; k < 3; ++k) directions[k] = rotation[k].transpose() * error_.rays()[k][i];
     Eigen::Vector3d x;
-    if (!TriangulateMidpoint(center, directions, &x) || !x.allFinite()) continue;
-    bool in_front = true;
-    for (int k = 0; k < 3; ++k) {
-      in_front =
-          in_front && std::isfinite(error_.ObservationError(k, i, rotation[k] * (x - center[k])));
+    if (known[i] < 0 || !in_front(i, x = known_points[known[i]] / scale)) {
+      std::array<Eigen::Vector3d, 3> directions;
+      for (int k = 0; k < 3; ++k) directions[k] = rotation[k].transpose() * error_.rays()[k][i];
+      if (!TriangulateMidpoint(center, directions, &x) || !in_front(i, x)) continue;
     }
-    if (!in_front) continue;
     points_.push_back(x);
     used_triplets_.push_back(i);
   }
@@ -208,7 +234,16 @@ bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial) {
     used_triplets_.clear();
     return false;
   }
+  built_ = true;
+  message_.clear();
+  // The dedicated engine needs no ceres::Problem; problem() builds it when asked.
+  if (options_.engine == ThreeViewBundleAdjustmentOptions::Engine::kCeres) BuildCeresProblem();
+  return true;
+}
 
+void ThreeViewBundleAdjuster::BuildCeresProblem() {
+  const bool yaw_only =
+      options_.rotation_model == ThreeViewBundleAdjustmentOptions::RotationModel::kYawOnly;
   problem_ = std::make_unique<ceres::Problem>();
   const bool bearings = observations_.HasBearings();
   const double loss_scale = options_.LossScale(observations_);
@@ -258,9 +293,11 @@ bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial) {
   }
   // Gauge: camera 1 is not in the problem; |C_2| = 1.
   problem_->SetManifold(center_[0], new ceres::SphereManifold<3>);
-  built_ = true;
-  message_.clear();
-  return true;
+}
+
+ceres::Problem* ThreeViewBundleAdjuster::problem() {
+  if (built_ && problem_ == nullptr) BuildCeresProblem();
+  return problem_.get();
 }
 
 ThreeViewPose ThreeViewBundleAdjuster::CurrentPose() const {
@@ -320,7 +357,12 @@ ThreeViewBundleAdjustmentSummary ThreeViewBundleAdjuster::Solve() {
     return out;
   }
   out.num_points = static_cast<int>(points_.size());
-  out.num_residual_blocks = problem_->NumResidualBlocks();
+  // Three observations per point, and the two gravity priors.
+  out.num_residual_blocks =
+      3 * out.num_points +
+      (options_.rotation_model == ThreeViewBundleAdjustmentOptions::RotationModel::kGravityPrior
+           ? 2
+           : 0);
   // Keep copies to restore on failure.
   double yaw_backup[2] = {yaw_[0], yaw_[1]};
   double quaternion_backup[2][4], center_backup[2][3];
@@ -338,11 +380,18 @@ ThreeViewBundleAdjustmentSummary ThreeViewBundleAdjuster::Solve() {
   }
   ceres::Solver::Summary& summary = out.ceres_summary;
   const auto start = std::chrono::steady_clock::now();
-  ceres::Solve(solver_options, problem_.get(), &summary);
+  if (options_.engine == ThreeViewBundleAdjustmentOptions::Engine::kDedicated) {
+    internal::SolveThreeViewLm(this, &summary);
+  } else {
+    ceres::Solve(solver_options, problem_.get(), &summary);
+  }
   out.solve_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!summary.IsSolutionUsable() || !CurrentPose().IsFinite()) {
-    out.message = "Ceres failed: " + summary.message;
+    out.message = (options_.engine == ThreeViewBundleAdjustmentOptions::Engine::kDedicated
+                       ? "the dedicated solver failed: "
+                       : "Ceres failed: ") +
+                  summary.message;
     for (int j = 0; j < 2; ++j) {
       yaw_[j] = yaw_backup[j];
       for (int i = 0; i < 4; ++i) quaternion_[j][i] = quaternion_backup[j][i];

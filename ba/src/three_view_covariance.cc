@@ -9,13 +9,15 @@
 #include <stdexcept>
 #include <vector>
 
+#include "three_view_lm_solver.h"
+
 namespace trigrav {
 namespace {
 
 using RotationModel = ThreeViewBundleAdjustmentOptions::RotationModel;
 
 // Largest pose dimension (kGravityPrior); matrices of the pose use fixed-size storage.
-constexpr int kMaxPoseSize = 11;
+constexpr int kMaxPoseSize = internal::kMaxThreeViewPoseSize;
 using PoseMatrix =
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxPoseSize, kMaxPoseSize>;
 using PoseVector = Eigen::Matrix<double, kMaxPoseSize, 1>;
@@ -65,6 +67,65 @@ ThreeViewPose UnitBaseline(const ThreeViewPose& pose) {
   out.cam2_from_cam1.t /= scale;
   out.cam3_from_cam1.t /= scale;
   return out;
+}
+
+// The information blocks from the Ceres problem's Jacobian (Problem::Evaluate through the losses);
+// n is the pose's tangent size.
+bool CeresInformation(ThreeViewBundleAdjuster* adjuster,
+                      int n,
+                      internal::ThreeViewInformation* information,
+                      std::string* message) {
+  ceres::Problem* problem = adjuster->problem();
+  // Jacobian columns: pose blocks in the layout's order (Ceres tangent coordinates), then the
+  // points unless they are constant.
+  ceres::Problem::EvaluateOptions evaluate;
+  evaluate.parameter_blocks = {adjuster->RotationBlock(2), adjuster->RotationBlock(3),
+                               adjuster->CenterBlock(2), adjuster->CenterBlock(3)};
+  const int num_points = static_cast<int>(adjuster->points().size());
+  const bool free_points =
+      num_points > 0 && !problem->IsParameterBlockConstant(adjuster->PointBlock(0));
+  const int num_free_points = free_points ? num_points : 0;
+  for (int p = 0; p < num_free_points; ++p) {
+    evaluate.parameter_blocks.push_back(adjuster->PointBlock(p));
+  }
+  evaluate.apply_loss_function = true;
+  ceres::CRSMatrix jacobian;
+  if (!problem->Evaluate(evaluate, nullptr, nullptr, nullptr, &jacobian) ||
+      jacobian.num_cols != n + 3 * num_free_points) {
+    *message = "covariance: the Jacobian could not be evaluated";
+    return false;
+  }
+
+  // Information J^T J by blocks: pose-pose, point-point and pose-point. Each residual block
+  // involves at most one point.
+  information->pose = PoseMatrix::Zero(n, n);
+  information->point.assign(num_free_points, Eigen::Matrix3d::Zero());
+  information->coupling.assign(num_free_points, PosePointMatrix::Zero());
+  for (int row = 0; row < jacobian.num_rows; ++row) {
+    PoseVector pose_row = PoseVector::Zero();
+    Eigen::Vector3d point_row = Eigen::Vector3d::Zero();
+    int point = -1;
+    for (int i = jacobian.rows[row]; i < jacobian.rows[row + 1]; ++i) {
+      const int col = jacobian.cols[i];
+      if (col < n) {
+        pose_row[col] = jacobian.values[i];
+        continue;
+      }
+      const int col_point = (col - n) / 3;
+      if (point >= 0 && col_point != point) {
+        *message = "covariance: a residual involves two points (use ceres::Covariance)";
+        return false;
+      }
+      point = col_point;
+      point_row[(col - n) % 3] = jacobian.values[i];
+    }
+    information->pose += pose_row.head(n) * pose_row.head(n).transpose();
+    if (point >= 0) {
+      information->point[point] += point_row * point_row.transpose();
+      information->coupling[point] += pose_row * point_row.transpose();
+    }
+  }
+  return true;
 }
 
 }  // namespace
@@ -123,68 +184,28 @@ bool ComputeThreeViewPoseCovariance(ThreeViewBundleAdjuster* adjuster,
   }
   covariance->resize(0, 0);
   message->clear();
-  ceres::Problem* problem = adjuster->problem();
-  if (problem == nullptr) {
+  if (!adjuster->built()) {
     *message = "covariance: the adjuster has no problem (Build() failed or was not called)";
     return false;
   }
   const ThreeViewCovarianceLayout layout =
       ThreeViewCovarianceLayout::For(adjuster->options().rotation_model);
   const int n = layout.Size();  // also the pose blocks' tangent size in Ceres
-
-  // Jacobian columns: pose blocks in the layout's order (Ceres tangent coordinates), then the
-  // points unless they are constant.
-  ceres::Problem::EvaluateOptions evaluate;
-  evaluate.parameter_blocks = {adjuster->RotationBlock(2), adjuster->RotationBlock(3),
-                               adjuster->CenterBlock(2), adjuster->CenterBlock(3)};
-  const int num_points = static_cast<int>(adjuster->points().size());
-  const bool free_points =
-      num_points > 0 && !problem->IsParameterBlockConstant(adjuster->PointBlock(0));
-  const int num_free_points = free_points ? num_points : 0;
-  for (int p = 0; p < num_free_points; ++p) {
-    evaluate.parameter_blocks.push_back(adjuster->PointBlock(p));
-  }
-  evaluate.apply_loss_function = true;
-  ceres::CRSMatrix jacobian;
-  if (!problem->Evaluate(evaluate, nullptr, nullptr, nullptr, &jacobian) ||
-      jacobian.num_cols != n + 3 * num_free_points) {
-    *message = "covariance: the Jacobian could not be evaluated";
+  internal::ThreeViewInformation information;
+  if (adjuster->options().engine == ThreeViewBundleAdjustmentOptions::Engine::kDedicated) {
+    if (!internal::EvaluateThreeViewInformation(adjuster, &information)) {
+      *message = "covariance: the Jacobian could not be evaluated";
+      return false;
+    }
+  } else if (!CeresInformation(adjuster, n, &information, message)) {
     return false;
   }
-
-  // Information J^T J by blocks: pose-pose, point-point and pose-point. Each residual block
-  // involves at most one point.
-  PoseMatrix pose_information = PoseMatrix::Zero(n, n);
-  std::vector<Eigen::Matrix3d> point_information(num_free_points, Eigen::Matrix3d::Zero());
-  std::vector<PosePointMatrix> coupling(num_free_points, PosePointMatrix::Zero());
-  for (int row = 0; row < jacobian.num_rows; ++row) {
-    PoseVector pose_row = PoseVector::Zero();
-    Eigen::Vector3d point_row = Eigen::Vector3d::Zero();
-    int point = -1;
-    for (int i = jacobian.rows[row]; i < jacobian.rows[row + 1]; ++i) {
-      const int col = jacobian.cols[i];
-      if (col < n) {
-        pose_row[col] = jacobian.values[i];
-        continue;
-      }
-      const int col_point = (col - n) / 3;
-      if (point >= 0 && col_point != point) {
-        *message = "covariance: a residual involves two points (use ceres::Covariance)";
-        return false;
-      }
-      point = col_point;
-      point_row[(col - n) % 3] = jacobian.values[i];
-    }
-    pose_information += pose_row.head(n) * pose_row.head(n).transpose();
-    if (point >= 0) {
-      point_information[point] += point_row * point_row.transpose();
-      coupling[point] += pose_row * point_row.transpose();
-    }
-  }
+  PoseMatrix pose_information = information.pose;
   // Schur complement: the pose's information with the points marginalised.
-  for (int p = 0; p < num_free_points; ++p) {
-    const Eigen::Matrix<double, Eigen::Dynamic, 3, 0, kMaxPoseSize, 3> c = coupling[p].topRows(n);
-    pose_information -= c * PseudoInverse(point_information[p]) * c.transpose();
+  for (std::size_t p = 0; p < information.point.size(); ++p) {
+    const Eigen::Matrix<double, Eigen::Dynamic, 3, 0, kMaxPoseSize, 3> c =
+        information.coupling[p].topRows(n);
+    pose_information -= c * PseudoInverse(information.point[p]) * c.transpose();
   }
 
   const Eigen::SelfAdjointEigenSolver<PoseMatrix> eigen(pose_information);

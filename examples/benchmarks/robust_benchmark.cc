@@ -4,14 +4,24 @@
 // 0.5 px noise, f = 500 px, 1.5 px threshold, 20 scenes). Counters over the first pass through the
 // scenes: median rotation / translation error (deg, views 2 and 3 pooled, a failure counting as
 // 180 deg) and the median number of RANSAC iterations.
+// Also InitializeAndRefine (3pt RANSAC at 2 px, yaw-only refinement with one re-classification
+// round) on scenes like initialize_and_refine_synthetic's (1 px noise, 20 % outliers, 375 and 875
+// triplets, 20 scenes each): RANSAC only ("raw"), refined by the Ceres engine and by the dedicated
+// one; counters are per-call medians of the stages (ms, ThreeViewEstimateTimings) and of the
+// inliers and refinement runs.
 //
 //   robust_benchmark
+//   robust_benchmark --benchmark_filter=InitializeAndRefine --benchmark_repetitions=5
+//       --benchmark_enable_random_interleaving=true   (one line)
 
 #include <benchmark/benchmark.h>
 
+#include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/evaluation/pooled_errors.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/robust_benchmark_scenes.h"
@@ -57,9 +67,75 @@ void BM_RobustEstimate(benchmark::State& state, trigrav::InitialSolver solver) {
   state.counters["iterations"] = trigrav::Median(iterations);
 }
 
+// InitializeAndRefine's scenes: `num_points` triplets, 1 px noise, 20 % outliers (seed 1).
+const std::vector<trigrav::ThreeViewObservations>& RefineScenes(int num_points) {
+  static std::vector<std::vector<trigrav::ThreeViewObservations>> cache(2);
+  std::vector<trigrav::ThreeViewObservations>& scenes = cache[num_points > 500 ? 1 : 0];
+  if (scenes.empty()) {
+    trigrav::SyntheticSceneOptions options;
+    options.num_points = num_points;
+    options.pixel_noise_px = 1.0;
+    options.outlier_ratio = 0.2;
+    std::mt19937_64 rng(1);
+    for (int i = 0; i < 20; ++i) {
+      scenes.push_back(trigrav::ToObservations(trigrav::GenerateSyntheticScene(options, &rng)));
+    }
+  }
+  return scenes;
+}
+
+enum class Refinement { kRaw, kCeres, kDedicated };
+
+void BM_InitializeAndRefine(benchmark::State& state, Refinement refinement) {
+  const std::vector<trigrav::ThreeViewObservations>& scenes =
+      RefineScenes(static_cast<int>(state.range(0)));
+  trigrav::InitializeAndRefineOptions options;
+  options.refine = refinement != Refinement::kRaw;
+  options.bundle_adjustment.engine =
+      refinement == Refinement::kDedicated
+          ? trigrav::ThreeViewBundleAdjustmentOptions::Engine::kDedicated
+          : trigrav::ThreeViewBundleAdjustmentOptions::Engine::kCeres;
+  std::vector<double> ransac, build, solve, reclassification, refine, inliers, runs;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t p = i++ % scenes.size();
+    options.robust.ransac.seed = p;
+    const trigrav::ThreeViewEstimate estimate = trigrav::InitializeAndRefine(scenes[p], options);
+    benchmark::DoNotOptimize(estimate.num_inliers);
+    const trigrav::ThreeViewEstimateTimings& t = estimate.timings;
+    ransac.push_back(1e3 * t.ransac_s);
+    build.push_back(1e3 * t.build_s);
+    solve.push_back(1e3 * t.solve_s);
+    reclassification.push_back(1e3 * t.reclassification_s);
+    refine.push_back(1e3 * t.refinement_s);
+    inliers.push_back(estimate.num_inliers);
+    runs.push_back(estimate.refinement_runs);
+  }
+  state.counters["ransac_ms"] = trigrav::Median(ransac);
+  state.counters["build_ms"] = trigrav::Median(build);
+  state.counters["solve_ms"] = trigrav::Median(solve);
+  state.counters["reclassify_ms"] = trigrav::Median(reclassification);
+  state.counters["refinement_ms"] = trigrav::Median(refine);
+  state.counters["inliers"] = trigrav::Median(inliers);
+  state.counters["runs"] = trigrav::Median(runs);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  const std::pair<const char*, Refinement> refinements[] = {{"raw", Refinement::kRaw},
+                                                            {"ceres", Refinement::kCeres},
+                                                            {"dedicated", Refinement::kDedicated}};
+  for (const auto& [name, refinement] : refinements) {
+    benchmark::RegisterBenchmark((std::string("BM_InitializeAndRefine/") + name).c_str(),
+                                 [refinement = refinement](benchmark::State& state) {
+                                   BM_InitializeAndRefine(state, refinement);
+                                 })
+        ->Arg(375)
+        ->Arg(875)
+        ->Unit(benchmark::kMillisecond)
+        ->MinTime(1.0);
+  }
   for (const trigrav::InitialSolver solver : trigrav::kInitialSolvers) {
     benchmark::RegisterBenchmark(
         (std::string("BM_RobustEstimate/") + trigrav::InitialSolverName(solver)).c_str(),

@@ -20,6 +20,7 @@
 //
 //   initialize_and_refine_synthetic                       # 3pt, 1 px, 20 % outliers, 20 scenes
 //   initialize_and_refine_synthetic --solver=5pt --imu_noise_deg=0.5 --rotation_model=gravity-prior
+//   initialize_and_refine_synthetic --points=375 --engine=dedicated
 //   initialize_and_refine_synthetic --experiment=sweep --output=sweep.csv         # about 40 s
 //   initialize_and_refine_synthetic --experiment=sample20 --output=sample20.csv   # about 5 min
 
@@ -59,6 +60,10 @@ DEFINE_string(solver, "3pt", "single: initial solver: 3pt, 3pt-sextic, 4pt, 7pt-
 DEFINE_string(rotation_model,
               "yaw-only",
               "single: bundle adjustment rotation model: yaw-only, gravity-prior.");
+DEFINE_string(engine,
+              "ceres",
+              "single: bundle-adjustment engine: ceres or dedicated (trigrav's own solver, same "
+              "optimum).");
 DEFINE_string(loss, "huber", "single: robust loss on the pixel residuals: huber, cauchy, none.");
 DEFINE_double(loss_scale_px, 2.0, "single: scale of the robust loss in pixels.");
 DEFINE_double(gravity_sigma_deg, 0.5, "single: IMU angular sigma of the gravity prior in degrees.");
@@ -147,6 +152,12 @@ trigrav::InitializeAndRefineOptions SingleOptions() {
                 "--rotation_model must be yaw-only or gravity-prior");
     ba.rotation_model = RotationModel::kGravityPrior;
   }
+  if (FLAGS_engine == "ceres") {
+    ba.engine = Options::Engine::kCeres;
+  } else {
+    RequireFlag(FLAGS_engine == "dedicated", "--engine must be ceres or dedicated");
+    ba.engine = Options::Engine::kDedicated;
+  }
   if (FLAGS_loss == "huber") {
     ba.loss = Options::LossType::kHuber;
   } else if (FLAGS_loss == "cauchy") {
@@ -207,9 +218,9 @@ void RunSingle() {
   } else {
     std::printf("exact gravity\n");
   }
-  std::printf("%s RANSAC with a %g px threshold, then %s bundle adjustment (Ceres, %s loss)\n\n",
+  std::printf("%s RANSAC with a %g px threshold, then %s bundle adjustment (%s, %s loss)\n\n",
               FLAGS_solver.c_str(), FLAGS_threshold_px, FLAGS_rotation_model.c_str(),
-              FLAGS_loss.c_str());
+              FLAGS_engine == "ceres" ? "Ceres" : "dedicated engine", FLAGS_loss.c_str());
 
   std::mt19937_64 rng(FLAGS_seed);
   trigrav::PooledErrors raw_errors, refined_errors;
@@ -510,9 +521,9 @@ int main(int argc, char** argv) {
   const Experiment experiment = ParseExperiment();
   using E = Experiment;
   RequireOnlyFor(experiment, {E::kSingle},
-                 {"solver", "rotation_model", "loss", "loss_scale_px", "gravity_sigma_deg",
-                  "threshold_px", "noise_px", "imu_noise_deg", "print_trials", "max_iterations",
-                  "local_optimization", "reclassification_rounds"});
+                 {"solver", "rotation_model", "engine", "loss", "loss_scale_px",
+                  "gravity_sigma_deg", "threshold_px", "noise_px", "imu_noise_deg", "print_trials",
+                  "max_iterations", "local_optimization", "reclassification_rounds"});
   RequireOnlyFor(experiment, {E::kSingle, E::kSweep}, {"outlier_ratio"});
   RequireOnlyFor(experiment, {E::kSweep}, {"threshold_sigmas"});
   RequireOnlyFor(experiment, {E::kSweep, E::kSample20}, {"threads", "output", "quick"});

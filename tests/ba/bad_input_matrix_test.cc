@@ -223,6 +223,8 @@ enum Ep : int {
   kBundleYawOnly,
   kBundleGravityPrior,
   kRefineOnly,  // RefineThreeViewPose on every triplet (yaw-only)
+  kRefine3ptDedicated,
+  kBundleDedicated,
 };
 
 using EpSet = std::uint64_t;
@@ -240,8 +242,9 @@ const EpSet kTrifocalSolvers = EpRange(k4ptAligned, k3ptSexticGravity);
 const EpSet kMinimalSolvers = EpRange(k4ptAligned, kTrifocalLinear) & ~Eps({k4ptGravity20});
 const EpSet kExactCountSolvers = EpRange(k3ptAligned, kEssential5pt);
 const EpSet kRobust = EpRange(kRobust3pt, kRobust8pt);
-const EpSet kRefine = Eps({kRefine3ptYawOnly, kRefine5ptGravityPrior, kRefine3ptGravityPrior});
-const EpSet kBundle = Eps({kBundleYawOnly, kBundleGravityPrior, kRefineOnly});
+const EpSet kRefine =
+    Eps({kRefine3ptYawOnly, kRefine5ptGravityPrior, kRefine3ptGravityPrior, kRefine3ptDedicated});
+const EpSet kBundle = Eps({kBundleYawOnly, kBundleGravityPrior, kRefineOnly, kBundleDedicated});
 
 struct EntryPoint {
   Ep id;
@@ -503,6 +506,23 @@ std::vector<EntryPoint> EntryPoints() {
       [](Input* in) { in->bundle.rotation_model = RM::kGravityPrior; }, RunBundle);
   add(kRefineOnly, "RefineThreeViewPose (yaw-only)", 30, 3,
       kObservations | kGivenPose | kBundleOptions, nullptr, RunRefineOnly);
+  // The dedicated bundle-adjustment engine behind both kinds of entry point.
+  add(
+      kRefine3ptDedicated, "InitializeAndRefine (3pt, yaw-only, dedicated engine)", 30, 3,
+      refine_reads,
+      [](Input* in) {
+        in->solver = InitialSolver::kTrifocal3pt;
+        in->bundle.engine = ThreeViewBundleAdjustmentOptions::Engine::kDedicated;
+      },
+      RunRefine);
+  add(
+      kBundleDedicated, "ThreeViewBundleAdjuster (gravity prior, dedicated engine)", 30, 3,
+      bundle_reads,
+      [](Input* in) {
+        in->bundle.rotation_model = RM::kGravityPrior;
+        in->bundle.engine = ThreeViewBundleAdjustmentOptions::Engine::kDedicated;
+      },
+      RunBundle);
   return eps;
 }
 
@@ -750,6 +770,7 @@ void AddOptionCases(std::vector<Case>* cases) {
        {"rotation_model out of range",
         [](BO* o) { o->rotation_model = static_cast<BO::RotationModel>(7); }},
        {"loss out of range", [](BO* o) { o->loss = static_cast<BO::LossType>(7); }},
+       {"engine out of range", [](BO* o) { o->engine = static_cast<BO::Engine>(7); }},
        {"linear_solver_type out of range",
         [](BO* o) { o->linear_solver_type = static_cast<ceres::LinearSolverType>(7); }}},
       &Input::bundle);
@@ -834,8 +855,8 @@ void AddGeometryCases(std::vector<Case>* cases) {
   }
   // Entry points that evaluate the pose handed in (the truth) rather than estimate one.
   const EpSet evaluators = Eps({kCombinePairs, kTriangulate, kReprojectionError}) | kBundle;
-  const EpSet decoupled_3pt =
-      Eps({k3ptAligned, k3ptGravity, kRobust3pt, kRefine3ptYawOnly, kRefine3ptGravityPrior});
+  const EpSet decoupled_3pt = Eps({k3ptAligned, k3ptGravity, kRobust3pt, kRefine3ptYawOnly,
+                                   kRefine3ptGravityPrior, kRefine3ptDedicated});
   add(degenerate, "duplicate triplet", Geometry::kDuplicateTriplet, kTruth,
       {{kMinimalSolvers, kNone}});
   add(degenerate, "all points identical", Geometry::kAllPointsIdentical, kNone,
@@ -854,7 +875,7 @@ void AddGeometryCases(std::vector<Case>* cases) {
   // no unique answer.
   add(degenerate, "zero baseline, camera 3", Geometry::kZeroBaseline3, kDegenerate,
       {{Eps({kRobust3pt, kRefine3ptYawOnly, kRefine5ptGravityPrior, kRefine3ptGravityPrior,
-             kEssential5pt, kEssential8pt, kTriangulate, kReprojectionError}) |
+             kRefine3ptDedicated, kEssential5pt, kEssential8pt, kTriangulate, kReprojectionError}) |
             kBundle,
         kTruth},
        {Eps({kCombinePairs}), kNone}});

@@ -29,8 +29,9 @@ struct InitializeAndRefineOptions {
   RobustThreeViewOptions robust;
   bool refine = true;
   // After a refinement, the triplets are re-classified against the refined pose (same threshold)
-  // and, if the inlier set changed, the refinement is run again from the refined pose, up to this
-  // many times. Recovers inliers a noisy minimal model missed.
+  // and, if the inlier set changed, the refinement is run again from the refined pose and the
+  // refined points (new inliers triangulated), up to this many times. Recovers inliers a noisy
+  // minimal model missed.
   int reclassification_rounds = 1;
   // Rotation model, loss and its scale, gravity sigma, iterations, threads, linear solver.
   ThreeViewBundleAdjustmentOptions bundle_adjustment;
@@ -39,11 +40,16 @@ struct InitializeAndRefineOptions {
   void Check() const;
 };
 
-// Wall-clock time of each stage of a call, in seconds.
+// Wall-clock time of each stage of a call, in seconds. refinement_s splits into build_s, solve_s,
+// covariance_s and reclassification_s (summed over the refinement runs), and small bookkeeping.
 struct ThreeViewEstimateTimings {
   double ransac_s = 0.0;
   double refinement_s = 0.0;  // every bundle adjustment and re-classification
   double total_s = 0.0;
+  double build_s = 0.0;  // adjuster set-up: parameters, points, the Ceres problem (kCeres)
+  double solve_s = 0.0;  // ThreeViewBundleAdjuster::Solve
+  double covariance_s = 0.0;
+  double reclassification_s = 0.0;
 };
 
 struct ThreeViewEstimate {

@@ -39,6 +39,10 @@ struct ThreeViewRefinement {
   // reason in summary.message, summary.success stays true). Never NaN.
   Eigen::MatrixXd covariance;
   ThreeViewBundleAdjustmentSummary summary;  // success, message, costs, the full Ceres summary
+  // Wall-clock seconds of the stages: adjuster construction and Build(), Solve(), the covariance.
+  double build_s = 0.0;
+  double solve_s = 0.0;
+  double covariance_s = 0.0;
 };
 
 // Refines `initial` on the triplets whose `inliers` entry is non-zero (inliers.size() ==
@@ -49,6 +53,16 @@ ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observation
                                         const ThreeViewPose& initial,
                                         const std::vector<char>& inliers,
                                         const ThreeViewBundleAdjustmentOptions& options);
+
+// The same, starting the points of the triplets a previous refinement had (its `triplets` and
+// `points_in_cam1`, at the scale of `initial`, normally previous.pose) from its points and
+// triangulating only the others (ThreeViewBundleAdjuster::Build with known points): a second
+// refinement on a changed inlier set that does not undo what the first one did.
+ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observations,
+                                        const ThreeViewPose& initial,
+                                        const std::vector<char>& inliers,
+                                        const ThreeViewBundleAdjustmentOptions& options,
+                                        const ThreeViewRefinement& previous);
 
 }  // namespace trigrav
 

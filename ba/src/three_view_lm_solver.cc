@@ -1,0 +1,719 @@
+// The dedicated Levenberg-Marquardt engine (three_view_lm_solver.h; derivations.md section 13).
+#include "three_view_lm_solver.h"
+
+#include <ceres/jet.h>
+#include <ceres/manifold.h>
+#include <ceres/sphere_manifold.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "trigrav/factors/angle_manifold.h"
+#include "trigrav/factors/reprojection_factors.h"
+#include "trigrav/initializers/gravity.h"
+
+namespace trigrav {
+namespace internal {
+namespace {
+
+using Options = ThreeViewBundleAdjustmentOptions;
+constexpr double kDegToRad = M_PI / 180.0;
+
+// rho(s) and rho'(s) of Ceres' losses (ceres/loss_function.h, same formulas and guards). Huber and
+// Cauchy have rho'' <= 0, where Ceres' corrector (internal/ceres/corrector.cc) scales the residual
+// and its Jacobian by sqrt(rho'): the cost is 1/2 rho(|r|^2) and the normal equations those of
+// sqrt(rho') r (section 13.2).
+class Loss {
+ public:
+  Loss(Options::LossType type, double scale) : type_(type), a_(scale), b_(scale * scale) {}
+
+  // Adds 1/2 rho(s) to *cost and returns sqrt(rho'(s)).
+  double Apply(double s, double* cost) const {
+    double rho = s, rho1 = 1.0;
+    switch (type_) {
+      case Options::LossType::kNone:
+        break;
+      case Options::LossType::kHuber:
+        if (s > b_) {
+          const double r = std::sqrt(s);
+          rho = 2.0 * a_ * r - b_;
+          rho1 = std::max(std::numeric_limits<double>::min(), a_ / r);
+        }
+        break;
+      case Options::LossType::kCauchy: {
+        const double sum = 1.0 + s * (1.0 / b_);
+        rho = b_ * std::log(sum);
+        rho1 = std::max(std::numeric_limits<double>::min(), 1.0 / sum);
+        break;
+      }
+    }
+    *cost += 0.5 * rho;
+    return std::sqrt(rho1);
+  }
+
+ private:
+  Options::LossType type_;
+  double a_, b_;
+};
+
+PixelResidual MakeResidual(const ThreeViewObservations& o, int k, int i, PixelResidual*) {
+  return PixelResidual{o.cameras[k], o.pixels[k][i]};
+}
+BearingResidual MakeResidual(const ThreeViewObservations& o, int k, int i, BearingResidual*) {
+  return BearingResidual(o.bearings[k][i]);
+}
+
+// Residual of one observation of a point in its camera's frame and its derivative d r / d x_cam,
+// by forward-mode automatic differentiation of the residual functor (Jets of 3: no allocation).
+// False if the observation cannot see the point or the result is not finite (Ceres then fails the
+// evaluation).
+template <typename Residual>
+bool EvaluateByJets(const Residual& residual,
+                    const Eigen::Vector3d& x,
+                    Eigen::Vector2d* r,
+                    Eigen::Matrix<double, 2, 3>* jacobian) {
+  using Jet = ceres::Jet<double, 3>;
+  const Jet x_jet[3] = {Jet(x[0], 0), Jet(x[1], 1), Jet(x[2], 2)};
+  Jet r_jet[2];
+  if (!residual(x_jet, r_jet)) return false;
+  for (int i = 0; i < 2; ++i) {
+    (*r)[i] = r_jet[i].a;
+    jacobian->row(i) = r_jet[i].v.transpose();
+  }
+  return r->allFinite() && jacobian->allFinite();
+}
+
+// The same, with the derivative in closed form where it is short (section 13.1): pinhole models,
+// u = fx X / Z + cx: du/dX = fx / Z, du/dZ = -fx X / Z^2 (v alike); distortion models by Jets.
+bool EvaluateObservation(const PixelResidual& residual,
+                         const Eigen::Vector3d& x,
+                         Eigen::Vector2d* r,
+                         Eigen::Matrix<double, 2, 3>* jacobian) {
+  if (!residual.camera.IsPinhole()) return EvaluateByJets(residual, x, r, jacobian);
+  if (!residual(x.data(), r->data())) return false;
+  const double inv_z = 1.0 / x.z();
+  const double fx = residual.camera.FocalX() * inv_z;
+  const double fy = residual.camera.FocalY() * inv_z;
+  *jacobian << fx, 0.0, -fx * x.x() * inv_z, 0.0, fy, -fy * x.y() * inv_z;
+  return r->allFinite() && jacobian->allFinite();
+}
+
+// Bearings, r_i = K (e_i . x) / (b . x) with K = 180 / pi: d r_i / dx = (K e_i - r_i b) / (b . x).
+bool EvaluateObservation(const BearingResidual& residual,
+                         const Eigen::Vector3d& x,
+                         Eigen::Vector2d* r,
+                         Eigen::Matrix<double, 2, 3>* jacobian) {
+  if (!residual(x.data(), r->data())) return false;
+  const Eigen::Matrix3d& frame = residual.frame();
+  const double inv_along = 1.0 / frame.row(2).dot(x);
+  for (int i = 0; i < 2; ++i) {
+    jacobian->row(i) = (kRadiansToDegrees * frame.row(i) - (*r)[i] * frame.row(2)) * inv_along;
+  }
+  return r->allFinite() && jacobian->allFinite();
+}
+
+Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
+// The engine for one residual type and one rotation model (kRot = 1: yaw, 3: quaternion tangent).
+// Pose unknowns in its internal order [rotation 2, C2 (2, sphere), rotation 3, C3 (3)], so that
+// each view's columns are contiguous and the pose-pose block of one observation is dense.
+template <typename Residual, int kRot>
+class Engine {
+ public:
+  static constexpr int kSize2 = kRot + 2;  // view 2: rotation, C2's tangent
+  static constexpr int kSize3 = kRot + 3;  // view 3: rotation, C3
+  static constexpr int kSize = kSize2 + kSize3;
+  using PoseVector = Eigen::Matrix<double, kSize, 1>;
+  using PoseMatrix = Eigen::Matrix<double, kSize, kSize>;
+  using PointPoseMatrix = Eigen::Matrix<double, 3, kSize>;
+
+  explicit Engine(ThreeViewBundleAdjuster* adjuster)
+      : adjuster_(adjuster),
+        options_(adjuster->options()),
+        solver_options_(options_.CeresSolverOptions()),
+        constant_points_(adjuster->config().constant_points),
+        loss_(options_.loss, options_.LossScale(adjuster->observations())) {
+    const ThreeViewObservations& observations = adjuster->observations();
+    const std::vector<int>& triplets = adjuster->triplet_indices();
+    for (int k = 0; k < 3; ++k) {
+      alignment_[k] = GravityAlignmentFromGravity(observations.gravity_in_cam[k]);
+      residuals_[k].reserve(triplets.size());
+      for (const int i : triplets) {
+        residuals_[k].push_back(MakeResidual(observations, k, i, static_cast<Residual*>(nullptr)));
+      }
+    }
+    for (int j = 0; j < 2; ++j) {
+      gravity_[j] = observations.gravity_in_cam[j + 1].normalized();
+      if constexpr (kRot == 3) {
+        prior_[j].reset(GravityPriorError::Create(observations.gravity_in_cam[0],
+                                                  observations.gravity_in_cam[j + 1]));
+      }
+    }
+    if constexpr (kRot == 3) {
+      // (observation sigma / gravity sigma)^2, as ThreeViewBundleAdjuster::Build's ScaledLoss.
+      const double ratio =
+          options_.ObservationSigma(observations) / (options_.gravity_sigma_deg * kDegToRad);
+      prior_weight_ = ratio * ratio;
+    }
+    const std::size_t n = triplets.size();
+    for (Linearization* l : {&current_, &candidate_}) l->points.resize(n);
+    point_scale_.resize(n);
+    point_inverse_.resize(n);
+    point_step_.resize(n);
+    candidate_points_.resize(n);
+    for (int j = 0; j < 2; ++j) {
+      std::copy_n(adjuster->CenterBlock(j + 2), 3, x_.center[j]);
+      std::copy_n(adjuster->RotationBlock(j + 2), kRot == 1 ? 1 : 4,
+                  kRot == 1 ? &x_.yaw[j] : x_.quaternion[j]);
+    }
+    points_ = adjuster->points();
+  }
+
+  void Solve(ceres::Solver::Summary* summary);
+  bool Information(ThreeViewInformation* information);
+
+ private:
+  // The pose in the adjuster's ambient parameters.
+  struct Pose {
+    double yaw[2] = {0.0, 0.0};
+    double quaternion[2][4] = {{1.0, 0.0, 0.0, 0.0}, {1.0, 0.0, 0.0, 0.0}};
+    double center[2][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+  };
+  struct PointBlocks {
+    Eigen::Matrix3d hpp;  // J_p^T J_p
+    PointPoseMatrix hpc;  // J_p^T J_c
+    Eigen::Vector3d gp;   // J_p^T r
+  };
+  // Residuals and normal equations at one parameter vector (section 13.3).
+  struct Linearization {
+    std::vector<PointBlocks> points;
+    PoseMatrix hcc;
+    PoseVector gc;
+    double cost = 0.0;        // of the residuals that depend on a variable block
+    double fixed_cost = 0.0;  // view 1's, when the points are constant (Ceres' fixed_cost)
+  };
+
+  bool Evaluate(const Pose& pose,
+                const std::vector<Eigen::Vector3d>& points,
+                Linearization* out) const;
+  template <int kView>
+  void AddView(const Eigen::Matrix<double, 2, 3>& jr,
+               const Eigen::Vector2d& r,
+               const Eigen::Matrix3d& rotation,
+               const Eigen::Vector3d& x_cam,
+               const Eigen::Matrix<double, 3, 2>& sphere_jacobian,
+               PointBlocks* point,
+               Linearization* out) const;
+  bool ComputeStep(double radius, PoseVector* pose_step, double* model_cost_change);
+  void Plus(const Pose& x, const PoseVector& delta, Pose* out) const;
+  double AmbientNorm(const Pose& pose, const std::vector<Eigen::Vector3d>& points) const;
+  double GradientMaxNorm() const;
+  double Damping(double diagonal, double scale, double radius) const {
+    const double s2 = scale * scale;
+    return std::min(std::max(s2 * diagonal, solver_options_.min_lm_diagonal),
+                    solver_options_.max_lm_diagonal) /
+           (s2 * radius);
+  }
+  Eigen::Matrix3d Rotation(const Pose& pose, int j) const {
+    if constexpr (kRot == 1) {
+      return alignment_[j + 1].transpose() * RotationAboutY(pose.yaw[j]) * alignment_[0];
+    }
+    const double* q = pose.quaternion[j];
+    return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix();
+  }
+  void WriteBack() {
+    for (int j = 0; j < 2; ++j) {
+      std::copy_n(x_.center[j], 3, adjuster_->CenterBlock(j + 2));
+      std::copy_n(kRot == 1 ? &x_.yaw[j] : x_.quaternion[j], kRot == 1 ? 1 : 4,
+                  adjuster_->RotationBlock(j + 2));
+    }
+    for (std::size_t p = 0; p < points_.size(); ++p) {
+      Eigen::Map<Eigen::Vector3d>(adjuster_->PointBlock(static_cast<int>(p))) = points_[p];
+    }
+  }
+
+  ThreeViewBundleAdjuster* adjuster_;
+  const Options& options_;
+  const ceres::Solver::Options solver_options_;
+  const bool constant_points_;
+  const Loss loss_;
+  Eigen::Matrix3d alignment_[3];
+  Eigen::Vector3d gravity_[2];  // unit gravity in cameras 2, 3: the yaw's axis
+  std::vector<Residual> residuals_[3];
+  std::unique_ptr<ceres::CostFunction> prior_[2];
+  double prior_weight_ = 0.0;
+  const ceres::QuaternionManifold quaternion_manifold_;
+  const ceres::SphereManifold<3> sphere_manifold_;
+
+  // Per-problem buffers: the iterate and the candidate, their linearisations, Jacobi scales.
+  Pose x_, candidate_x_;
+  std::vector<Eigen::Vector3d> points_, candidate_points_;
+  Linearization current_, candidate_;
+  PoseVector pose_scale_;
+  std::vector<Eigen::Vector3d> point_scale_;
+  std::vector<Eigen::Matrix3d> point_inverse_;  // (H_pp + D_p^2)^-1 of the last step
+  std::vector<Eigen::Vector3d> point_step_;
+};
+
+template <typename Residual, int kRot>
+template <int kView>
+void Engine<Residual, kRot>::AddView(const Eigen::Matrix<double, 2, 3>& jr,
+                                     const Eigen::Vector2d& r,
+                                     const Eigen::Matrix3d& rotation,
+                                     const Eigen::Vector3d& x_cam,
+                                     const Eigen::Matrix<double, 3, 2>& sphere_jacobian,
+                                     PointBlocks* point,
+                                     Linearization* out) const {
+  // x_cam = R (X - C): d x / d X = R, d x / d C = -R; rotations by left perturbation
+  // (section 13.1): yaw about camera k's gravity, d x / d yaw = g_k x x_cam; Ceres' quaternion
+  // tangent rotates by 2 delta, d x / d delta = -2 [x_cam]_x.
+  constexpr int kViewSize = kView == 0 ? kSize2 : kSize3;
+  constexpr int kOffset = kView == 0 ? 0 : kSize2;
+  const Eigen::Matrix<double, 2, 3> jx = jr * rotation;
+  Eigen::Matrix<double, 2, kViewSize> jc;
+  if constexpr (kRot == 1) {
+    jc.col(0) = jr * gravity_[kView].cross(x_cam);
+  } else {
+    jc.template leftCols<kRot>() = -2.0 * jr * Skew(x_cam);
+  }
+  if constexpr (kView == 0) {
+    jc.template rightCols<2>() = -jx * sphere_jacobian;
+  } else {
+    jc.template rightCols<3>() = -jx;
+  }
+  point->hpp.noalias() += jx.transpose() * jx;
+  point->gp.noalias() += jx.transpose() * r;
+  point->hpc.template middleCols<kViewSize>(kOffset).noalias() = jx.transpose() * jc;
+  out->hcc.template block<kViewSize, kViewSize>(kOffset, kOffset).noalias() += jc.transpose() * jc;
+  out->gc.template segment<kViewSize>(kOffset).noalias() += jc.transpose() * r;
+}
+
+template <typename Residual, int kRot>
+bool Engine<Residual, kRot>::Evaluate(const Pose& pose,
+                                      const std::vector<Eigen::Vector3d>& points,
+                                      Linearization* out) const {
+  Eigen::Matrix3d rotation[2];
+  Eigen::Vector3d center[2];
+  for (int j = 0; j < 2; ++j) {
+    rotation[j] = Rotation(pose, j);
+    center[j] = Eigen::Map<const Eigen::Vector3d>(pose.center[j]);
+  }
+  Eigen::Matrix<double, 3, 2, Eigen::RowMajor> sphere_jacobian;
+  sphere_manifold_.PlusJacobian(pose.center[0], sphere_jacobian.data());
+  const Eigen::Matrix<double, 3, 2> sphere = sphere_jacobian;
+  out->cost = 0.0;
+  out->fixed_cost = 0.0;
+  out->hcc.setZero();
+  out->gc.setZero();
+  Eigen::Vector2d r;
+  Eigen::Matrix<double, 2, 3> jr;
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const Eigen::Vector3d& point = points[p];
+    PointBlocks& blocks = out->points[p];
+    // View 1: the reference camera sees the point in its own frame.
+    if (!EvaluateObservation(residuals_[0][p], point, &r, &jr)) return false;
+    double weight = loss_.Apply(r.squaredNorm(), constant_points_ ? &out->fixed_cost : &out->cost);
+    jr *= weight;
+    r *= weight;
+    blocks.hpp.noalias() = jr.transpose() * jr;
+    blocks.gp.noalias() = jr.transpose() * r;
+    for (int j = 0; j < 2; ++j) {
+      const Eigen::Vector3d x_cam = rotation[j] * (point - center[j]);
+      if (!EvaluateObservation(residuals_[j + 1][p], x_cam, &r, &jr)) return false;
+      weight = loss_.Apply(r.squaredNorm(), &out->cost);
+      jr *= weight;
+      r *= weight;
+      if (j == 0) {
+        AddView<0>(jr, r, rotation[0], x_cam, sphere, &blocks, out);
+      } else {
+        AddView<1>(jr, r, rotation[1], x_cam, sphere, &blocks, out);
+      }
+    }
+  }
+  if constexpr (kRot == 3) {
+    // Gravity priors: Ceres' AutoDiff Jacobian in the quaternion's ambient coordinates times the
+    // QuaternionManifold's Plus Jacobian; weight w as ScaledLoss: cost w/2 |r|^2, sqrt(w) r.
+    const double sqrt_weight = std::sqrt(prior_weight_);
+    for (int j = 0; j < 2; ++j) {
+      const double* parameters[1] = {pose.quaternion[j]};
+      Eigen::Matrix<double, 2, 4, Eigen::RowMajor> ambient;
+      double* jacobian_blocks[1] = {ambient.data()};
+      Eigen::Vector2d prior_residual;
+      if (!prior_[j]->Evaluate(parameters, prior_residual.data(), jacobian_blocks) ||
+          !prior_residual.allFinite()) {
+        return false;
+      }
+      out->cost += 0.5 * prior_weight_ * prior_residual.squaredNorm();
+      Eigen::Matrix<double, 4, 3, Eigen::RowMajor> plus_jacobian;
+      quaternion_manifold_.PlusJacobian(pose.quaternion[j], plus_jacobian.data());
+      const Eigen::Matrix<double, 2, 3> jc = sqrt_weight * ambient * plus_jacobian;
+      const int offset = j == 0 ? 0 : kSize2;
+      out->hcc.template block<3, 3>(offset, offset).noalias() += jc.transpose() * jc;
+      out->gc.template segment<3>(offset).noalias() +=
+          jc.transpose() * (sqrt_weight * prior_residual);
+    }
+  }
+  return std::isfinite(out->cost) && std::isfinite(out->fixed_cost);
+}
+
+// Solves (H + D^2) delta = -g by eliminating the points (section 13.4); fills the point steps.
+template <typename Residual, int kRot>
+bool Engine<Residual, kRot>::ComputeStep(double radius,
+                                         PoseVector* pose_step,
+                                         double* model_cost_change) {
+  const Linearization& lin = current_;
+  PoseMatrix reduced = lin.hcc;
+  for (int i = 0; i < kSize; ++i) reduced(i, i) += Damping(lin.hcc(i, i), pose_scale_[i], radius);
+  PoseVector rhs = -lin.gc;
+  if (!constant_points_) {
+    for (std::size_t p = 0; p < lin.points.size(); ++p) {
+      const PointBlocks& blocks = lin.points[p];
+      Eigen::Matrix3d damped = blocks.hpp;
+      for (int i = 0; i < 3; ++i) {
+        damped(i, i) += Damping(blocks.hpp(i, i), point_scale_[p][i], radius);
+      }
+      point_inverse_[p] = damped.inverse();
+      const Eigen::Matrix<double, kSize, 3> w = blocks.hpc.transpose() * point_inverse_[p];
+      reduced.noalias() -= w * blocks.hpc;
+      rhs.noalias() += w * blocks.gp;
+    }
+  }
+  const Eigen::LLT<PoseMatrix> llt(reduced);
+  if (llt.info() != Eigen::Success) return false;
+  *pose_step = llt.solve(rhs);
+  if (!pose_step->allFinite()) return false;
+  // Model decrease -(g . delta + delta^T H delta / 2) with the undamped H.
+  double g_delta = lin.gc.dot(*pose_step);
+  double h_delta = pose_step->dot(lin.hcc * *pose_step);
+  if (!constant_points_) {
+    for (std::size_t p = 0; p < lin.points.size(); ++p) {
+      const PointBlocks& blocks = lin.points[p];
+      const Eigen::Vector3d coupled = blocks.hpc * *pose_step;
+      point_step_[p].noalias() = -point_inverse_[p] * (blocks.gp + coupled);
+      if (!point_step_[p].allFinite()) return false;
+      const Eigen::Vector3d& dp = point_step_[p];
+      g_delta += blocks.gp.dot(dp);
+      h_delta += dp.dot(blocks.hpp * dp) + 2.0 * dp.dot(coupled);
+    }
+  }
+  *model_cost_change = -(g_delta + 0.5 * h_delta);
+  return true;
+}
+
+template <typename Residual, int kRot>
+void Engine<Residual, kRot>::Plus(const Pose& x, const PoseVector& delta, Pose* out) const {
+  for (int j = 0; j < 2; ++j) {
+    const int offset = j == 0 ? 0 : kSize2;
+    if constexpr (kRot == 1) {
+      out->yaw[j] = NormalizeAngle(x.yaw[j] + delta[offset]);
+    } else {
+      quaternion_manifold_.Plus(x.quaternion[j], delta.data() + offset, out->quaternion[j]);
+    }
+  }
+  sphere_manifold_.Plus(x.center[0], delta.data() + kRot, out->center[0]);
+  for (int i = 0; i < 3; ++i) out->center[1][i] = x.center[1][i] + delta[kSize2 + kRot + i];
+}
+
+template <typename Residual, int kRot>
+double Engine<Residual, kRot>::AmbientNorm(const Pose& pose,
+                                           const std::vector<Eigen::Vector3d>& points) const {
+  double sum = 0.0;
+  for (int j = 0; j < 2; ++j) {
+    if constexpr (kRot == 1) {
+      sum += pose.yaw[j] * pose.yaw[j];
+    } else {
+      sum += Eigen::Map<const Eigen::Vector4d>(pose.quaternion[j]).squaredNorm();
+    }
+    sum += Eigen::Map<const Eigen::Vector3d>(pose.center[j]).squaredNorm();
+  }
+  if (!constant_points_) {
+    for (const Eigen::Vector3d& point : points) sum += point.squaredNorm();
+  }
+  return std::sqrt(sum);
+}
+
+// Ceres' |x - Plus(x, -g)|_inf at the current iterate.
+template <typename Residual, int kRot>
+double Engine<Residual, kRot>::GradientMaxNorm() const {
+  Pose moved;
+  Plus(x_, -current_.gc, &moved);
+  double norm = 0.0;
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      norm = std::max(norm, std::abs(x_.center[j][i] - moved.center[j][i]));
+    }
+    if constexpr (kRot == 1) {
+      norm = std::max(norm, std::abs(x_.yaw[j] - moved.yaw[j]));
+    } else {
+      for (int i = 0; i < 4; ++i) {
+        norm = std::max(norm, std::abs(x_.quaternion[j][i] - moved.quaternion[j][i]));
+      }
+    }
+  }
+  if (!constant_points_) {
+    for (const PointBlocks& blocks : current_.points) {
+      norm = std::max(norm, blocks.gp.cwiseAbs().maxCoeff());
+    }
+  }
+  return norm;
+}
+
+template <typename Residual, int kRot>
+void Engine<Residual, kRot>::Solve(ceres::Solver::Summary* summary) {
+  const auto start = std::chrono::steady_clock::now();
+  const ceres::Solver::Options& o = solver_options_;
+  *summary = ceres::Solver::Summary();
+  summary->minimizer_type = ceres::TRUST_REGION;
+  summary->trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  summary->linear_solver_type_given = o.linear_solver_type;
+  summary->linear_solver_type_used = ceres::DENSE_SCHUR;
+  summary->num_threads_given = o.num_threads;
+  summary->num_threads_used = 1;
+  summary->termination_type = ceres::FAILURE;
+  summary->num_successful_steps = 0;
+  summary->num_unsuccessful_steps = 0;
+  summary->iterations.reserve(o.max_num_iterations + 1);
+  const int num_points = static_cast<int>(points_.size());
+  summary->num_parameter_blocks = 4 + num_points;
+  summary->num_parameters = 2 * (kRot == 1 ? 1 : 4) + 6 + 3 * num_points;
+  summary->num_effective_parameters = kSize + 3 * num_points;
+  summary->num_residual_blocks = 3 * num_points + (kRot == 3 ? 2 : 0);
+  summary->num_residuals = 2 * summary->num_residual_blocks;
+  auto finish = [&](ceres::TerminationType type, const std::string& message) {
+    summary->termination_type = type;
+    summary->message = message;
+    summary->final_cost = current_.cost + current_.fixed_cost;
+    summary->fixed_cost = current_.fixed_cost;
+    if (type != ceres::FAILURE) WriteBack();
+    summary->total_time_in_seconds = summary->minimizer_time_in_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+
+  // Ceres' trust-region loop (section 13.5). Iteration 0 (TrustRegionMinimizer::IterationZero):
+  // evaluate, fix the Jacobi scaling 1 / (1 + |column|) of every unknown.
+  if (!Evaluate(x_, points_, &current_)) {
+    summary->initial_cost = summary->final_cost = 0.0;
+    summary->message = "Residual and Jacobian evaluation failed.";
+    return;
+  }
+  summary->initial_cost = current_.cost + current_.fixed_cost;
+  for (int i = 0; i < kSize; ++i) pose_scale_[i] = 1.0 / (1.0 + std::sqrt(current_.hcc(i, i)));
+  for (int p = 0; p < num_points; ++p) {
+    point_scale_[p] = (1.0 + current_.points[p].hpp.diagonal().array().sqrt()).inverse().matrix();
+  }
+  double x_norm = AmbientNorm(x_, points_);
+  double gradient_max_norm = GradientMaxNorm();
+  ceres::IterationSummary iteration;
+  iteration.iteration = 0;
+  iteration.cost = summary->initial_cost;
+  iteration.gradient_max_norm = gradient_max_norm;
+  iteration.step_is_valid = iteration.step_is_successful = true;
+  double radius = o.initial_trust_region_radius;
+  double decrease_factor = 2.0;
+  int num_consecutive_invalid_steps = 0;
+  char message[160];
+  for (;;) {
+    // Ceres' FinalizeIterationAndCheckIfMinimizerCanContinue.
+    if (iteration.step_is_successful) {
+      ++summary->num_successful_steps;
+    } else {
+      ++summary->num_unsuccessful_steps;
+    }
+    iteration.trust_region_radius = radius;
+    summary->iterations.push_back(iteration);
+    if (iteration.iteration >= o.max_num_iterations) {
+      std::snprintf(message, sizeof(message),
+                    "Maximum number of iterations reached. Number of iterations: %d.",
+                    iteration.iteration);
+      finish(ceres::NO_CONVERGENCE, message);
+      return;
+    }
+    if (iteration.step_is_successful && gradient_max_norm <= o.gradient_tolerance) {
+      std::snprintf(message, sizeof(message),
+                    "Gradient tolerance reached. Gradient max norm: %e <= %e", gradient_max_norm,
+                    o.gradient_tolerance);
+      finish(ceres::CONVERGENCE, message);
+      return;
+    }
+    if (radius < o.min_trust_region_radius) {
+      std::snprintf(message, sizeof(message),
+                    "Minimum trust region radius reached. Trust region radius: %e <= %e", radius,
+                    o.min_trust_region_radius);
+      finish(ceres::CONVERGENCE, message);
+      return;
+    }
+    const int number = iteration.iteration + 1;
+    iteration = ceres::IterationSummary();
+    iteration.iteration = number;
+    iteration.cost = current_.cost + current_.fixed_cost;
+    iteration.gradient_max_norm = gradient_max_norm;
+
+    PoseVector pose_step;
+    double model_cost_change = 0.0;
+    iteration.step_is_valid =
+        ComputeStep(radius, &pose_step, &model_cost_change) && model_cost_change > 0.0;
+    if (!iteration.step_is_valid) {
+      if (++num_consecutive_invalid_steps >= o.max_num_consecutive_invalid_steps) {
+        std::snprintf(message, sizeof(message),
+                      "Number of consecutive invalid steps more than "
+                      "Solver::Options::max_num_consecutive_invalid_steps: %d",
+                      o.max_num_consecutive_invalid_steps);
+        finish(ceres::FAILURE, message);
+        return;
+      }
+      radius /= decrease_factor;
+      decrease_factor *= 2.0;
+      continue;
+    }
+    num_consecutive_invalid_steps = 0;
+
+    // The candidate, linearised at once: it becomes the iterate if the step is accepted.
+    Plus(x_, pose_step, &candidate_x_);
+    double step_norm_squared = 0.0;
+    for (int j = 0; j < 2; ++j) {
+      for (int i = 0; i < 3; ++i) {
+        step_norm_squared += std::pow(x_.center[j][i] - candidate_x_.center[j][i], 2);
+      }
+      if constexpr (kRot == 1) {
+        step_norm_squared += std::pow(x_.yaw[j] - candidate_x_.yaw[j], 2);
+      } else {
+        for (int i = 0; i < 4; ++i) {
+          step_norm_squared += std::pow(x_.quaternion[j][i] - candidate_x_.quaternion[j][i], 2);
+        }
+      }
+    }
+    for (int p = 0; p < num_points; ++p) {
+      if (constant_points_) {
+        candidate_points_[p] = points_[p];
+      } else {
+        candidate_points_[p] = points_[p] + point_step_[p];
+        step_norm_squared += (candidate_points_[p] - points_[p]).squaredNorm();
+      }
+    }
+    const double candidate_cost = Evaluate(candidate_x_, candidate_points_, &candidate_)
+                                      ? candidate_.cost
+                                      : std::numeric_limits<double>::max();
+    iteration.step_norm = std::sqrt(step_norm_squared);
+    const double step_tolerance = o.parameter_tolerance * (x_norm + o.parameter_tolerance);
+    if (iteration.step_norm <= step_tolerance) {
+      std::snprintf(message, sizeof(message),
+                    "Parameter tolerance reached. Relative step_norm: %e <= %e.",
+                    iteration.step_norm / (x_norm + o.parameter_tolerance), o.parameter_tolerance);
+      finish(ceres::CONVERGENCE, message);
+      return;
+    }
+    iteration.cost_change = current_.cost - candidate_cost;
+    if (std::abs(iteration.cost_change) <= o.function_tolerance * current_.cost) {
+      std::snprintf(message, sizeof(message),
+                    "Function tolerance reached. |cost_change|/cost: %e <= %e",
+                    std::abs(iteration.cost_change) / current_.cost, o.function_tolerance);
+      finish(ceres::CONVERGENCE, message);
+      return;
+    }
+    iteration.relative_decrease = iteration.cost_change / model_cost_change;
+    iteration.step_is_successful = iteration.relative_decrease > o.min_relative_decrease;
+    if (iteration.step_is_successful) {
+      // Ceres' LevenbergMarquardtStrategy::StepAccepted.
+      std::swap(x_, candidate_x_);
+      points_.swap(candidate_points_);
+      std::swap(current_, candidate_);
+      x_norm = AmbientNorm(x_, points_);
+      gradient_max_norm = GradientMaxNorm();
+      iteration.cost = current_.cost + current_.fixed_cost;
+      iteration.gradient_max_norm = gradient_max_norm;
+      radius = std::min(
+          o.max_trust_region_radius,
+          radius / std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * iteration.relative_decrease - 1.0, 3)));
+      decrease_factor = 2.0;
+    } else {
+      // StepRejected.
+      radius /= decrease_factor;
+      decrease_factor *= 2.0;
+    }
+  }
+}
+
+template <typename Residual, int kRot>
+bool Engine<Residual, kRot>::Information(ThreeViewInformation* information) {
+  if (!Evaluate(x_, points_, &current_)) return false;
+  // Internal order [r2, u2, r3, C3] to the layout's [r2, r3, u2, C3].
+  int to_layout[kSize];
+  for (int i = 0; i < kSize; ++i) {
+    if (i < kRot) {
+      to_layout[i] = i;
+    } else if (i < kSize2) {
+      to_layout[i] = 2 * kRot + (i - kRot);
+    } else if (i < kSize2 + kRot) {
+      to_layout[i] = kRot + (i - kSize2);
+    } else {
+      to_layout[i] = i;
+    }
+  }
+  information->pose.resize(kSize, kSize);
+  for (int a = 0; a < kSize; ++a) {
+    for (int b = 0; b < kSize; ++b) {
+      information->pose(to_layout[a], to_layout[b]) = current_.hcc(a, b);
+    }
+  }
+  const std::size_t num_free = constant_points_ ? 0 : points_.size();
+  information->point.resize(num_free);
+  information->coupling.resize(num_free);
+  for (std::size_t p = 0; p < num_free; ++p) {
+    information->point[p] = current_.points[p].hpp;
+    information->coupling[p].setZero();
+    for (int a = 0; a < kSize; ++a) {
+      information->coupling[p].row(to_layout[a]) = current_.points[p].hpc.col(a).transpose();
+    }
+  }
+  return true;
+}
+
+// Runs f on the engine of the adjuster's residual type and rotation model.
+template <typename F>
+void WithEngine(ThreeViewBundleAdjuster* adjuster, F&& f) {
+  const bool bearings = adjuster->observations().HasBearings();
+  const bool yaw_only = adjuster->options().rotation_model == Options::RotationModel::kYawOnly;
+  if (bearings && yaw_only) {
+    Engine<BearingResidual, 1> engine(adjuster);
+    f(engine);
+  } else if (bearings) {
+    Engine<BearingResidual, 3> engine(adjuster);
+    f(engine);
+  } else if (yaw_only) {
+    Engine<PixelResidual, 1> engine(adjuster);
+    f(engine);
+  } else {
+    Engine<PixelResidual, 3> engine(adjuster);
+    f(engine);
+  }
+}
+
+}  // namespace
+
+void SolveThreeViewLm(ThreeViewBundleAdjuster* adjuster, ceres::Solver::Summary* summary) {
+  WithEngine(adjuster, [summary](auto& engine) { engine.Solve(summary); });
+}
+
+bool EvaluateThreeViewInformation(ThreeViewBundleAdjuster* adjuster,
+                                  ThreeViewInformation* information) {
+  bool ok = false;
+  WithEngine(adjuster, [&](auto& engine) { ok = engine.Information(information); });
+  return ok;
+}
+
+}  // namespace internal
+}  // namespace trigrav

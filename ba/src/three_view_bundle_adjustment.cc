@@ -2,6 +2,7 @@
 
 #include <ceres/loss_function.h>
 #include <ceres/manifold.h>
+#include <ceres/ordered_groups.h>
 #include <ceres/sphere_manifold.h>
 
 #include <Eigen/Geometry>
@@ -244,9 +245,14 @@ bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial,
 void ThreeViewBundleAdjuster::BuildCeresProblem() {
   const bool yaw_only =
       options_.rotation_model == ThreeViewBundleAdjustmentOptions::RotationModel::kYawOnly;
-  problem_ = std::make_unique<ceres::Problem>();
+  // The problem never outlives the adjuster's parameters and holds one factor per observation:
+  // Ceres' per-call argument checks are skipped and one loss is shared by every observation (the
+  // problem counts references and deletes it once).
+  ceres::Problem::Options problem_options;
+  problem_options.disable_all_safety_checks = true;
+  problem_ = std::make_unique<ceres::Problem>(problem_options);
   const bool bearings = observations_.HasBearings();
-  const double loss_scale = options_.LossScale(observations_);
+  ceres::LossFunction* loss = MakeLoss(options_.loss, options_.LossScale(observations_));
   for (std::size_t p = 0; p < points_.size(); ++p) {
     const int i = used_triplets_[p];
     double* point = points_[p].data();
@@ -261,7 +267,6 @@ void ThreeViewBundleAdjuster::BuildCeresProblem() {
         cost = k == 0 ? ReferenceReprojectionError<PixelResidual>::Create(residual)
                       : MakeFactor(yaw_only, residual, alignment_[k], alignment_[0]);
       }
-      ceres::LossFunction* loss = MakeLoss(options_.loss, loss_scale);
       if (k == 0) {
         problem_->AddResidualBlock(cost, loss, point);
       } else {
@@ -293,6 +298,22 @@ void ThreeViewBundleAdjuster::BuildCeresProblem() {
   }
   // Gauge: camera 1 is not in the problem; |C_2| = 1.
   problem_->SetManifold(center_[0], new ceres::SphereManifold<3>);
+}
+
+void ThreeViewBundleAdjuster::SetEliminationOrdering(ceres::Solver::Options* solver_options) {
+  // The points first, then the cameras: the ordering the Schur solvers' preprocessor would search
+  // for, given. Only over the adjuster's own blocks: blocks a caller added keep Ceres' search.
+  const bool schur = solver_options->linear_solver_type == ceres::DENSE_SCHUR ||
+                     solver_options->linear_solver_type == ceres::SPARSE_SCHUR ||
+                     solver_options->linear_solver_type == ceres::ITERATIVE_SCHUR;
+  if (!schur || problem_->NumParameterBlocks() != static_cast<int>(points_.size()) + 4) return;
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+  for (Eigen::Vector3d& point : points_) ordering->AddElementToGroup(point.data(), 0);
+  for (int view = 2; view <= 3; ++view) {
+    ordering->AddElementToGroup(RotationBlock(view), 1);
+    ordering->AddElementToGroup(CenterBlock(view), 1);
+  }
+  solver_options->linear_solver_ordering = std::move(ordering);
 }
 
 ceres::Problem* ThreeViewBundleAdjuster::problem() {
@@ -383,7 +404,9 @@ ThreeViewBundleAdjustmentSummary ThreeViewBundleAdjuster::Solve() {
   if (options_.engine == ThreeViewBundleAdjustmentOptions::Engine::kDedicated) {
     internal::SolveThreeViewLm(this, &summary);
   } else {
-    ceres::Solve(solver_options, problem_.get(), &summary);
+    ceres::Solver::Options ceres_options = solver_options;
+    SetEliminationOrdering(&ceres_options);
+    ceres::Solve(ceres_options, problem_.get(), &summary);
   }
   out.solve_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

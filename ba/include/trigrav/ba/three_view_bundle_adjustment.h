@@ -196,6 +196,8 @@ class ThreeViewBundleAdjuster {
  private:
   // The ceres::Problem over the parameter blocks of a successful Build().
   void BuildCeresProblem();
+  // Gives the Schur solvers of the Ceres engine the points-then-cameras elimination ordering.
+  void SetEliminationOrdering(ceres::Solver::Options* solver_options);
 
   const ThreeViewObservations& observations_;
   const ThreeViewReprojectionError error_;  // rays and visibility of every observation

@@ -24,7 +24,13 @@ class LocationEstimator {
   void generate_models(const std::array<int, 1>& sample, std::vector<Model>* models) const {
     models->push_back(data_[sample[0]]);
   }
-  double error(const Model& model, std::size_t i) const { return std::abs(data_[i] - model); }
+  void errors(const Model& model,
+              std::size_t begin,
+              std::size_t end,
+              double /*cap*/,
+              double* errors) const {
+    for (std::size_t i = begin; i < end; ++i) errors[i - begin] = std::abs(data_[i] - model);
+  }
   bool refine_model(const std::vector<int>& inliers, Model* model) const {
     double sum = 0.0;
     for (const int i : inliers) sum += data_[i];

@@ -3,6 +3,8 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 #include "trigrav/initializers/camera_pose.h"
@@ -26,17 +28,53 @@ namespace internal {
 
 // The midpoint system A X = b above, summed ray by ray: A = sum_k (I - d_k d_k^T) = 3 I - sum_k d_k
 // d_k^T for unit d_k, b = sum_k (c_k - d_k (d_k . c_k)); only the 6 distinct entries of the
-// symmetric A are kept.
+// symmetric A are kept. Branch-free, so that a loop over many triplets vectorises.
 struct MidpointSums {
   double a00 = 0.0, a01 = 0.0, a02 = 0.0, a11 = 0.0, a12 = 0.0, a22 = 0.0;
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  double b0 = 0.0, b1 = 0.0, b2 = 0.0;
 
-  // Adds the ray from `center` along d; false (sums untouched) if d is zero, not finite or so long
-  // that its squared length overflows.
-  bool Add(const Eigen::Vector3d& center, const Eigen::Vector3d& d);
-  // X = A^-1 b; false (X untouched) unless A is clearly invertible and X finite.
-  bool Solve(Eigen::Vector3d* point) const;
+  // Adds the ray from c along d (any non-zero length). False if d is zero, not finite or so long
+  // that its squared length overflows; the sums are then meaningless. A NaN sum makes Solve fail.
+  bool Add(const double* c, const double* d);
+  // X = A^-1 b by A's cofactors. False unless A is clearly invertible (parallel rays make it rank
+  // 2; its eigenvalues lie in [0, 3]) and X finite; X is then meaningless.
+  bool Solve(double* x) const;
 };
+
+inline bool MidpointSums::Add(const double* c, const double* d) {
+  // Sums in the order of the former Eigen expressions (d.squaredNorm(), d.dot(c)): bit-identical.
+  const double squared = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
+  // (I - d d^T / |d|^2) also accepts non-unit directions.
+  const double u0 = d[0] / squared, u1 = d[1] / squared, u2 = d[2] / squared;
+  a00 += 1.0 - u0 * d[0];
+  a01 -= u0 * d[1];
+  a02 -= u0 * d[2];
+  a11 += 1.0 - u1 * d[1];
+  a12 -= u1 * d[2];
+  a22 += 1.0 - u2 * d[2];
+  const double along = (d[0] * c[0] + d[1] * c[1]) + d[2] * c[2];
+  b0 += c[0] - u0 * along;
+  b1 += c[1] - u1 * along;
+  b2 += c[2] - u2 * along;
+  // Zero, overflowing or NaN fail (NaN compares false).
+  return (squared > 0.0) & (squared <= std::numeric_limits<double>::max());
+}
+
+inline bool MidpointSums::Solve(double* x) const {
+  const double c00 = a11 * a22 - a12 * a12;
+  const double c01 = a02 * a12 - a01 * a22;
+  const double c02 = a01 * a12 - a02 * a11;
+  const double determinant = a00 * c00 + a01 * c01 + a02 * c02;
+  const double c11 = a00 * a22 - a02 * a02;
+  const double c12 = a01 * a02 - a00 * a12;
+  const double c22 = a00 * a11 - a01 * a01;
+  x[0] = (c00 * b0 + c01 * b1 + c02 * b2) / determinant;
+  x[1] = (c01 * b0 + c11 * b1 + c12 * b2) / determinant;
+  x[2] = (c02 * b0 + c12 * b1 + c22 * b2) / determinant;
+  constexpr double kLargest = std::numeric_limits<double>::max();
+  return (std::abs(determinant) > 1e-12) & (std::abs(x[0]) <= kLargest) &
+         (std::abs(x[1]) <= kLargest) & (std::abs(x[2]) <= kLargest);
+}
 
 }  // namespace internal
 
@@ -85,8 +123,13 @@ class ThreeViewReprojectionError {
                       std::size_t n,
                       double cap,
                       const ObservationErrorFn& observation_error) const;
+  void PinholeErrors(const PreparedPose& pose,
+                     std::size_t begin,
+                     std::size_t end,
+                     double* errors) const;
   double PixelError(int k, std::size_t n, const Eigen::Vector3d& point_in_cam) const;
   double BearingError(int k, std::size_t n, const Eigen::Vector3d& point_in_cam) const;
+  double Field(int field, std::size_t n) const { return fields_[field * size() + n]; }
 
   bool bearings_;
   std::array<Camera, 3> cameras_;
@@ -94,10 +137,12 @@ class ThreeViewReprojectionError {
   std::array<std::vector<BearingResidual>, 3> bearing_errors_;  // bearing observations
   std::array<std::vector<Eigen::Vector3d>, 3> rays_;
   std::array<std::vector<Eigen::Vector3d>, 3> unit_rays_;  // rays_, normalised
-  // Camera 1's part of each triplet's midpoint system, which no pose changes, and whether its ray
-  // could be added (MidpointSums::Add).
-  std::vector<internal::MidpointSums> reference_sums_;
-  std::vector<char> reference_added_;
+  // Pixel observations of three cameras without distortion: their intrinsics (else empty).
+  std::vector<PinholeCamera> pinhole_;
+  // Per triplet, field by field (fields_[field * size() + n], the fields of three_view_error.cc):
+  // camera 1's part of the midpoint sums, which no pose changes, the unit rays of cameras 2 and 3
+  // and the pixels; a layout that the scoring loop vectorises over.
+  std::vector<double> fields_;
 };
 
 }  // namespace trigrav

@@ -4,11 +4,13 @@
 // 0.5 px noise, f = 500 px, 1.5 px threshold, 20 scenes). Counters over the first pass through the
 // scenes: median rotation / translation error (deg, views 2 and 3 pooled, a failure counting as
 // 180 deg) and the median number of RANSAC iterations.
-// Also InitializeAndRefine (3pt RANSAC at 2 px, yaw-only refinement with one re-classification
-// round) on scenes like initialize_and_refine_synthetic's (1 px noise, 20 % outliers, 375 and 875
-// triplets, 20 scenes each): RANSAC only ("raw"), refined by the Ceres engine and by the dedicated
-// one; counters are per-call medians of the stages (ms, ThreeViewEstimateTimings) and of the
-// inliers and refinement runs.
+// On scenes like initialize_and_refine_synthetic's default (IssueScenes: 1 px noise, 20 % outliers,
+// threshold 2 px, f = 500 px, 20 scenes from seed 2026, n = 375 and 875 triplets):
+//  - BM_RobustEstimateIssueScenes/3pt/<n>: the 3-point robust estimate;
+//  - BM_InitializeAndRefine/<raw|ceres|dedicated>/<n>: InitializeAndRefine (3pt RANSAC, yaw-only
+//    refinement with one re-classification round): RANSAC only ("raw"), refined by the Ceres
+//    engine and by the dedicated one; counters are per-call medians of the stages (ms,
+//    ThreeViewEstimateTimings) and of the inliers and refinement runs.
 //
 //   robust_benchmark
 //   robust_benchmark --benchmark_filter=InitializeAndRefine --benchmark_repetitions=5
@@ -37,14 +39,35 @@ const std::vector<trigrav::SyntheticScene>& Scenes() {
   return scenes;
 }
 
-void BM_RobustEstimate(benchmark::State& state, trigrav::InitialSolver solver) {
+// 20 scenes from seed 2026 of `num_points` (375 or 875) triplets, 1 px noise and 20 % outliers.
+const std::vector<trigrav::SyntheticScene>& IssueScenes(int num_points) {
+  static std::vector<std::vector<trigrav::SyntheticScene>> cache(2);
+  std::vector<trigrav::SyntheticScene>& scenes = cache[num_points > 500 ? 1 : 0];
+  if (scenes.empty()) {
+    trigrav::SyntheticSceneOptions options;
+    options.num_points = num_points;
+    options.pixel_noise_px = 1.0;
+    options.outlier_ratio = 0.2;
+    std::mt19937_64 rng(trigrav::kRobustBenchmarkSeed);
+    for (int i = 0; i < trigrav::kRobustBenchmarkScenes; ++i) {
+      scenes.push_back(trigrav::GenerateSyntheticScene(options, &rng));
+    }
+  }
+  return scenes;
+}
+
+// Times EstimateThreeViewPoseRobust over the scenes in turn at the inlier threshold.
+void TimeRobustEstimate(benchmark::State& state,
+                        const std::vector<trigrav::SyntheticScene>& scenes,
+                        trigrav::InitialSolver solver,
+                        double threshold_px) {
   std::vector<trigrav::ThreeViewObservations> observations;
-  for (const trigrav::SyntheticScene& scene : Scenes()) {
+  for (const trigrav::SyntheticScene& scene : scenes) {
     observations.push_back(trigrav::ToObservations(scene));
   }
   trigrav::RobustThreeViewOptions options;
   options.solver = solver;
-  options.ransac.max_error = trigrav::kRobustBenchmarkThresholdPx;
+  options.ransac.max_error = threshold_px;
   trigrav::PooledErrors errors;  // of the first pass over the scenes
   std::vector<double> iterations;
   std::size_t i = 0;
@@ -55,7 +78,7 @@ void BM_RobustEstimate(benchmark::State& state, trigrav::InitialSolver solver) {
     benchmark::DoNotOptimize(estimate.ransac.num_inliers);
     if (iterations.size() < observations.size()) {
       if (estimate.success) {
-        errors.Add(trigrav::ComputeThreeViewPoseErrors(Scenes()[p].ground_truth, estimate.pose));
+        errors.Add(trigrav::ComputeThreeViewPoseErrors(scenes[p].ground_truth, estimate.pose));
       } else {
         errors.AddFailure();
       }
@@ -67,28 +90,29 @@ void BM_RobustEstimate(benchmark::State& state, trigrav::InitialSolver solver) {
   state.counters["iterations"] = trigrav::Median(iterations);
 }
 
-// InitializeAndRefine's scenes: `num_points` triplets, 1 px noise, 20 % outliers (seed 1).
-const std::vector<trigrav::ThreeViewObservations>& RefineScenes(int num_points) {
-  static std::vector<std::vector<trigrav::ThreeViewObservations>> cache(2);
-  std::vector<trigrav::ThreeViewObservations>& scenes = cache[num_points > 500 ? 1 : 0];
-  if (scenes.empty()) {
-    trigrav::SyntheticSceneOptions options;
-    options.num_points = num_points;
-    options.pixel_noise_px = 1.0;
-    options.outlier_ratio = 0.2;
-    std::mt19937_64 rng(1);
-    for (int i = 0; i < 20; ++i) {
-      scenes.push_back(trigrav::ToObservations(trigrav::GenerateSyntheticScene(options, &rng)));
-    }
-  }
-  return scenes;
+void BM_RobustEstimate(benchmark::State& state, trigrav::InitialSolver solver) {
+  TimeRobustEstimate(state, Scenes(), solver, trigrav::kRobustBenchmarkThresholdPx);
 }
+
+void BM_RobustEstimateIssueScenes(benchmark::State& state) {
+  TimeRobustEstimate(state, IssueScenes(static_cast<int>(state.range(0))),
+                     trigrav::InitialSolver::kTrifocal3pt, 2.0);
+}
+
+BENCHMARK(BM_RobustEstimateIssueScenes)
+    ->Name("BM_RobustEstimateIssueScenes/3pt")
+    ->Arg(375)
+    ->Arg(875)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
 
 enum class Refinement { kRaw, kCeres, kDedicated };
 
 void BM_InitializeAndRefine(benchmark::State& state, Refinement refinement) {
-  const std::vector<trigrav::ThreeViewObservations>& scenes =
-      RefineScenes(static_cast<int>(state.range(0)));
+  std::vector<trigrav::ThreeViewObservations> scenes;
+  for (const trigrav::SyntheticScene& scene : IssueScenes(static_cast<int>(state.range(0)))) {
+    scenes.push_back(trigrav::ToObservations(scene));
+  }
   trigrav::InitializeAndRefineOptions options;
   options.refine = refinement != Refinement::kRaw;
   options.bundle_adjustment.engine =

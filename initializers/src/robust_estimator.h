@@ -40,7 +40,10 @@ class Estimator {
     }
   }
 
-  double error(const Model& model, std::size_t i) const { return data_.error(model.prepared, i); }
+  void errors(
+      const Model& model, std::size_t begin, std::size_t end, double cap, double* errors) const {
+    data_.error.Errors(model.prepared, begin, end, cap, errors);
+  }
 
   bool refine_model(const std::vector<int>& inliers, Model* model) const {
     if (static_cast<int>(inliers.size()) < M::kMinTripletsToRefine) return false;

@@ -170,8 +170,14 @@ struct RecordingEstimator {
     samples->push_back(sample);
     models->push_back(sample[0]);
   }
-  double error(const Model& model, std::size_t i) const {
-    return static_cast<int>(i) % 5 == model % 5 ? 0.0 : 10.0;
+  void errors(const Model& model,
+              std::size_t begin,
+              std::size_t end,
+              double /*cap*/,
+              double* errors) const {
+    for (std::size_t i = begin; i < end; ++i) {
+      errors[i - begin] = static_cast<int>(i) % 5 == model % 5 ? 0.0 : 10.0;
+    }
   }
   bool refine_model(const std::vector<int>&, Model*) const { return false; }
   std::vector<std::array<int, kSampleSize>>* samples;

@@ -24,7 +24,17 @@ class LocationEstimator {
   void generate_models(const std::array<int, 1>& sample, std::vector<Model>* models) const {
     models->push_back(data_[sample[0]]);
   }
-  double error(const Model& model, std::size_t i) const { return std::abs(data_[i] - model); }
+  // Exact errors; with `beyond_cap`, each error above the cap is replaced by the smallest double
+  // above it, as the Estimator concept allows.
+  void errors(
+      const Model& model, std::size_t begin, std::size_t end, double cap, double* errors) const {
+    for (std::size_t i = begin; i < end; ++i) {
+      const double e = std::abs(data_[i] - model);
+      errors[i - begin] =
+          beyond_cap_ && e > cap ? std::nextafter(cap, std::numeric_limits<double>::infinity()) : e;
+    }
+  }
+  void set_beyond_cap(bool beyond_cap) { beyond_cap_ = beyond_cap; }
   bool refine_model(const std::vector<int>& inliers, Model* model) const {
     double sum = 0.0;
     for (const int i : inliers) sum += data_[i];
@@ -34,6 +44,7 @@ class LocationEstimator {
 
  private:
   std::vector<double> data_;
+  bool beyond_cap_ = false;
 };
 
 std::vector<double> Data(int inliers, int outliers, std::uint64_t seed) {
@@ -44,6 +55,29 @@ std::vector<double> Data(int inliers, int outliers, std::uint64_t seed) {
   for (int i = 0; i < inliers; ++i) data.push_back(noise(rng));
   for (int i = 0; i < outliers; ++i) data.push_back(uniform(rng));
   return data;
+}
+
+// Errors above the cap (the largest local-optimisation threshold) are not needed exactly: the
+// smallest values above it give the same report, bit for bit, as the exact errors.
+TEST(Ransac, ErrorsAboveTheCapChangeNothing) {
+  for (const double multiplier : {1.0, 3.0}) {
+    LocationEstimator estimator(Data(300, 700, 2));
+    RansacOptions options;
+    options.max_error = 0.5;
+    options.local_optimization_threshold_multiplier = multiplier;
+    options.min_iterations = 50;
+    const RansacReport<double> exact = Ransac(estimator, options);
+    estimator.set_beyond_cap(true);
+    const RansacReport<double> capped = Ransac(estimator, options);
+    ASSERT_TRUE(exact.success);
+    EXPECT_GT(exact.statistics.num_local_optimizations, 0);
+    EXPECT_EQ(capped.model, exact.model);
+    EXPECT_EQ(capped.inlier_mask, exact.inlier_mask);
+    EXPECT_EQ(capped.statistics.msac_cost, exact.statistics.msac_cost);
+    EXPECT_EQ(capped.statistics.num_models_scored, exact.statistics.num_models_scored);
+    EXPECT_EQ(capped.statistics.num_local_optimizations, exact.statistics.num_local_optimizations);
+    EXPECT_EQ(capped.statistics.iterations, exact.statistics.iterations);
+  }
 }
 
 TEST(Ransac, FindsTheInlierModelAndMask) {

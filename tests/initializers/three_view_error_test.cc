@@ -3,9 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
+#include <vector>
 
 #include "trigrav/evaluation/synthetic_scene.h"
 
@@ -85,6 +89,105 @@ TEST(ThreeViewReprojectionError, SeesAnOutlierSlidingAlongItsEpipolarLine) {
       (observations.pixels[2][0] - Eigen::Vector2d(320.0, 240.0)).normalized();
   observations.pixels[2][0] += 20.0 * radial;
   EXPECT_GT(ThreeViewReprojectionError(observations)(prepared, 0), 3.0);
+}
+
+// The error as derivations.md section 7.2 writes it, in Eigen expressions: the midpoint of the
+// rays d_k = R_k^T x_k / |x_k|, projected by Camera::Project, the largest residual norm.
+double ReferenceError(const ThreeViewObservations& observations,
+                      const ThreeViewPose& pose,
+                      std::size_t n) {
+  const std::array<Eigen::Matrix3d, 3> rotation = {Eigen::Matrix3d::Identity(),
+                                                   pose.cam2_from_cam1.R, pose.cam3_from_cam1.R};
+  const std::array<Eigen::Vector3d, 3> center = {
+      Eigen::Vector3d::Zero(), pose.cam2_from_cam1.Center(), pose.cam3_from_cam1.Center()};
+  std::array<Eigen::Vector3d, 3> directions;
+  for (int k = 0; k < 3; ++k) {
+    Eigen::Vector3d ray;
+    if (!observations.cameras[k].Unproject(observations.pixels[k][n], &ray)) {
+      return std::numeric_limits<double>::infinity();
+    }
+    directions[k] = rotation[k].transpose() * ray.normalized();
+  }
+  Eigen::Vector3d point;
+  if (!TriangulateMidpoint(center, directions, &point)) {
+    return std::numeric_limits<double>::infinity();
+  }
+  double largest = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d p = k == 0 ? point : Eigen::Vector3d(rotation[k] * (point - center[k]));
+    Eigen::Vector2d pixel;
+    if (!observations.cameras[k].Project(p.data(), pixel.data())) {
+      return std::numeric_limits<double>::infinity();
+    }
+    const double norm = (pixel - observations.pixels[k][n]).norm();
+    largest =
+        std::max(largest, std::isfinite(norm) ? norm : std::numeric_limits<double>::infinity());
+  }
+  return largest;
+}
+
+// Errors() of pinhole cameras (the vectorised loop) and of distorted ones (triplet by triplet) are
+// the reference error to the last bit, outliers, points behind a camera and parallel rays (a pose
+// without baseline) included; above the cap they are only known to be above it.
+TEST(ThreeViewReprojectionError, ErrorsAreTheReferenceToTheLastBit) {
+  std::mt19937_64 rng(5);
+  for (const bool distorted : {false, true}) {
+    SyntheticSceneOptions options;
+    options.num_points = 301;  // not a multiple of any block
+    options.pixel_noise_px = 1.0;
+    options.outlier_ratio = 0.3;
+    if (distorted) options.opencv_distortion = {-0.2, 0.05, 0.001, -0.001};
+    const SyntheticScene scene = GenerateSyntheticScene(options, &rng);
+    const ThreeViewObservations observations = ToObservations(scene);
+    const ThreeViewReprojectionError error(observations);
+    ThreeViewPose behind = scene.ground_truth;  // camera 3 turned around
+    behind.cam3_from_cam1.R = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY()).toRotationMatrix() *
+                              behind.cam3_from_cam1.R;
+    ThreeViewPose no_baseline = scene.ground_truth;
+    no_baseline.cam2_from_cam1.t.setZero();
+    no_baseline.cam3_from_cam1.t.setZero();
+    ThreeViewPose perturbed = scene.ground_truth;
+    perturbed.cam2_from_cam1.t += Eigen::Vector3d(0.05, -0.02, 0.01);
+    int finite = 0, infinite = 0;
+    for (const ThreeViewPose& pose : {scene.ground_truth, perturbed, behind, no_baseline}) {
+      const auto prepared = ThreeViewReprojectionError::Prepare(pose);
+      std::vector<double> exact(error.size()), capped(error.size() - 7);
+      error.Errors(prepared, 0, error.size(), std::numeric_limits<double>::infinity(),
+                   exact.data());
+      error.Errors(prepared, 7, error.size(), 3.0, capped.data());
+      for (std::size_t n = 0; n < error.size(); ++n) {
+        const double reference = ReferenceError(observations, pose, n);
+        EXPECT_EQ(exact[n], reference) << "triplet " << n << (distorted ? " distorted" : "");
+        EXPECT_EQ(error(prepared, n), reference);
+        if (n >= 7) {
+          if (reference <= 3.0) {
+            EXPECT_EQ(capped[n - 7], reference);
+          } else {
+            EXPECT_GT(capped[n - 7], 3.0);
+          }
+        }
+        finite += std::isfinite(reference);
+        infinite += !std::isfinite(reference);
+      }
+    }
+    EXPECT_GT(finite, 300);
+    EXPECT_GT(infinite, 300);  // behind camera 3, and no baseline
+  }
+}
+
+TEST(ThreeViewReprojectionError, ErrorsRejectABadRange) {
+  ThreeViewObservations observations;
+  for (int k = 0; k < 3; ++k) {
+    observations.cameras[k] = PinholeCamera{500.0, 500.0, 320.0, 240.0};
+    observations.gravity_in_cam[k] = Eigen::Vector3d::UnitY();
+    observations.pixels[k] = {Eigen::Vector2d(320.0, 240.0)};
+  }
+  const ThreeViewReprojectionError error(observations);
+  const auto pose = ThreeViewReprojectionError::Prepare(ThreeViewPose{});
+  double value;
+  EXPECT_THROW(error.Errors(pose, 0, 2, 1.0, &value), std::invalid_argument);
+  EXPECT_THROW(error.Errors(pose, 1, 0, 1.0, &value), std::invalid_argument);
+  EXPECT_THROW(error.Errors(pose, 0, 1, 1.0, nullptr), std::invalid_argument);
 }
 
 TEST(TriangulateMidpoint, ParallelRaysFail) {

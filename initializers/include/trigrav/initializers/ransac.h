@@ -72,21 +72,21 @@ struct RansacReport {
 //   // Models of a minimal sample (indices into the data, distinct); append to *models.
 //   void generate_models(const std::array<int, kSampleSize>& sample, std::vector<Model>* models)
 //   const;
-//   // Error of datum i under a model, in the unit of RansacOptions::max_error; +inf if it cannot
-//   be
-//   // explained (e.g. behind a camera). Never NaN.
-//   double error(const Model& model, std::size_t i) const;
+//   // Errors of data [begin, end) under a model into errors[0, end - begin), in the unit of
+//   // RansacOptions::max_error; +inf for a datum it cannot explain (e.g. behind a camera); never
+//   // NaN. Only errors <= cap must be exact: one beyond it may be any value beyond it.
+//   void errors(const Model& model, std::size_t begin, std::size_t end, double cap,
+//               double* errors) const;
 //   // Local optimisation: a better model from the inlier indices (e.g. a non-minimal solver).
-//   Returns
-//   // false to keep the current one.
+//   // Returns false to keep the current one.
 //   bool refine_model(const std::vector<int>& inliers, Model* model) const;
 //
 // The loop draws distinct random samples (std::mt19937_64 seeded with options.seed), scores each
 // model by the MSAC cost, stopping a model's scoring as soon as its partial cost exceeds the best
-// one, and stops after max(min_iterations, k) samples with k = log(1 - confidence) /
-// log(1 - w^s) for the best inlier ratio w so far, or at max_iterations; the inlier-ratio floor
-// (RansacOptions::min_inlier_ratio) caps k at its value for w = min_inlier_ratio and makes a best
-// model below the floor a failure.
+// one (the cost only grows, so this changes no result), and stops after max(min_iterations, k)
+// samples with k = log(1 - confidence) / log(1 - w^s) for the best inlier ratio w so far, or at
+// max_iterations; the inlier-ratio floor (RansacOptions::min_inlier_ratio) caps k at its value for
+// w = min_inlier_ratio and makes a best model below the floor a failure.
 template <typename Estimator>
 RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
                                                const RansacOptions& options);
@@ -123,21 +123,31 @@ inline int RequiredIterations(double inlier_ratio, int sample_size, double confi
                                                                    : static_cast<int>(std::ceil(k));
 }
 
-// MSAC cost of a model, abandoned (returning +inf) once it exceeds `bound`. Writes each datum's
-// error into *errors as it goes, so a completed pass also gives the inliers without a second pass.
+// Data whose errors are computed at once before their MSAC terms are summed: a bound exceeded
+// mid-block wastes at most a block, and the estimator's per-call work is amortised.
+inline constexpr std::size_t kScoringBlock = 32;
+
+// MSAC cost of a model, abandoned (returning +inf) once it exceeds `bound`, the terms summed in
+// the order of the data whatever the blocks. Writes each datum's error into *errors as it goes
+// (exact up to `cap`, see the Estimator concept), so a completed pass also gives the inliers of
+// any threshold <= cap without a second pass.
 template <typename Estimator>
 double MsacCost(const Estimator& estimator,
                 const typename Estimator::Model& model,
                 double squared_threshold,
+                double cap,
                 double bound,
                 std::vector<double>* errors) {
   double cost = 0.0;
   const std::size_t n = estimator.num_data();
-  for (std::size_t i = 0; i < n; ++i) {
-    const double e = estimator.error(model, i);
-    (*errors)[i] = e;
-    cost += std::min(e * e, squared_threshold);
-    if (cost > bound) return std::numeric_limits<double>::infinity();
+  for (std::size_t begin = 0; begin < n; begin += kScoringBlock) {
+    const std::size_t end = std::min(n, begin + kScoringBlock);
+    estimator.errors(model, begin, end, cap, errors->data() + begin);
+    for (std::size_t i = begin; i < end; ++i) {
+      const double e = (*errors)[i];
+      cost += std::min(e * e, squared_threshold);
+      if (cost > bound) return std::numeric_limits<double>::infinity();
+    }
   }
   return cost;
 }
@@ -184,6 +194,12 @@ RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
     return report;
   }
   const double squared_threshold = options.max_error * options.max_error;
+  // The largest threshold any error is compared with: max_error, or the first local-optimisation
+  // round's. Errors beyond it need not be exact; min(e^2, squared_threshold) and every inlier set
+  // are the same for any of them.
+  const double cap =
+      options.max_error *
+      (options.local_optimization ? options.local_optimization_threshold_multiplier : 1.0);
   std::mt19937_64 rng(options.seed);
   std::array<int, kSampleSize> sample;
   std::vector<Model> models;
@@ -209,7 +225,7 @@ RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
   auto consider = [&](const Model& model) {
     ++report.statistics.num_models_scored;
     const double cost =
-        internal::MsacCost(estimator, model, squared_threshold, best_cost, &candidate_errors);
+        internal::MsacCost(estimator, model, squared_threshold, cap, best_cost, &candidate_errors);
     candidate_errors_complete = std::isfinite(cost);
     if (!(cost < best_cost)) return false;
     best_cost = cost;
@@ -251,7 +267,7 @@ RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
         current_errors = &best_errors;
       } else {
         if (!candidate_errors_complete) {
-          for (std::size_t i = 0; i < n; ++i) candidate_errors[i] = estimator.error(current, i);
+          estimator.errors(current, 0, n, cap, candidate_errors.data());
         }
         current_errors = &candidate_errors;
       }

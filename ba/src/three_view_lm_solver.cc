@@ -93,23 +93,32 @@ bool EvaluateByJets(const Residual& residual,
   return r->allFinite() && jacobian->allFinite();
 }
 
+// The focal lengths of a pinhole camera (pinhole = false for a distortion model or bearings), read
+// once per solve.
+struct PinholeFocal {
+  bool pinhole = false;
+  double fx = 0.0, fy = 0.0;
+};
+
 // The same, with the derivative in closed form where it is short (section 13.1): pinhole models,
 // u = fx X / Z + cx: du/dX = fx / Z, du/dZ = -fx X / Z^2 (v alike); distortion models by Jets.
 bool EvaluateObservation(const PixelResidual& residual,
+                         const PinholeFocal& focal,
                          const Eigen::Vector3d& x,
                          Eigen::Vector2d* r,
                          Eigen::Matrix<double, 2, 3>* jacobian) {
-  if (!residual.camera.IsPinhole()) return EvaluateByJets(residual, x, r, jacobian);
+  if (!focal.pinhole) return EvaluateByJets(residual, x, r, jacobian);
   if (!residual(x.data(), r->data())) return false;
   const double inv_z = 1.0 / x.z();
-  const double fx = residual.camera.FocalX() * inv_z;
-  const double fy = residual.camera.FocalY() * inv_z;
+  const double fx = focal.fx * inv_z;
+  const double fy = focal.fy * inv_z;
   *jacobian << fx, 0.0, -fx * x.x() * inv_z, 0.0, fy, -fy * x.y() * inv_z;
   return r->allFinite() && jacobian->allFinite();
 }
 
 // Bearings, r_i = K (e_i . x) / (b . x) with K = 180 / pi: d r_i / dx = (K e_i - r_i b) / (b . x).
 bool EvaluateObservation(const BearingResidual& residual,
+                         const PinholeFocal&,
                          const Eigen::Vector3d& x,
                          Eigen::Vector2d* r,
                          Eigen::Matrix<double, 2, 3>* jacobian) {
@@ -151,6 +160,10 @@ class Engine {
     const std::vector<int>& triplets = adjuster->triplet_indices();
     for (int k = 0; k < 3; ++k) {
       alignment_[k] = GravityAlignmentFromGravity(observations.gravity_in_cam[k]);
+      const Camera& camera = observations.cameras[k];
+      if (!observations.HasBearings() && camera.IsPinhole()) {
+        focal_[k] = {true, camera.FocalX(), camera.FocalY()};
+      }
       residuals_[k].reserve(triplets.size());
       for (const int i : triplets) {
         residuals_[k].push_back(MakeResidual(observations, k, i, static_cast<Residual*>(nullptr)));
@@ -171,7 +184,7 @@ class Engine {
     }
     const std::size_t n = triplets.size();
     for (Linearization* l : {&current_, &candidate_}) l->points.resize(n);
-    point_scale_.resize(n);
+    point_scale_squared_.resize(n);
     point_inverse_.resize(n);
     point_step_.resize(n);
     candidate_points_.resize(n);
@@ -222,11 +235,11 @@ class Engine {
   void Plus(const Pose& x, const PoseVector& delta, Pose* out) const;
   double AmbientNorm(const Pose& pose, const std::vector<Eigen::Vector3d>& points) const;
   double GradientMaxNorm() const;
-  double Damping(double diagonal, double scale, double radius) const {
-    const double s2 = scale * scale;
-    return std::min(std::max(s2 * diagonal, solver_options_.min_lm_diagonal),
+  // d_i of section 13.4 from H_ii, s_i^2 and the radius.
+  double Damping(double diagonal, double scale_squared, double radius) const {
+    return std::min(std::max(scale_squared * diagonal, solver_options_.min_lm_diagonal),
                     solver_options_.max_lm_diagonal) /
-           (s2 * radius);
+           (scale_squared * radius);
   }
   Eigen::Matrix3d Rotation(const Pose& pose, int j) const {
     if constexpr (kRot == 1) {
@@ -253,6 +266,7 @@ class Engine {
   const Loss loss_;
   Eigen::Matrix3d alignment_[3];
   Eigen::Vector3d gravity_[2];  // unit gravity in cameras 2, 3: the yaw's axis
+  PinholeFocal focal_[3];
   std::vector<Residual> residuals_[3];
   std::unique_ptr<ceres::CostFunction> prior_[2];
   double prior_weight_ = 0.0;
@@ -263,8 +277,8 @@ class Engine {
   Pose x_, candidate_x_;
   std::vector<Eigen::Vector3d> points_, candidate_points_;
   Linearization current_, candidate_;
-  PoseVector pose_scale_;
-  std::vector<Eigen::Vector3d> point_scale_;
+  PoseVector pose_scale_squared_;  // Jacobi scales s_i^2, fixed at iteration 0
+  std::vector<Eigen::Vector3d> point_scale_squared_;
   std::vector<Eigen::Matrix3d> point_inverse_;  // (H_pp + D_p^2)^-1 of the last step
   std::vector<Eigen::Vector3d> point_step_;
 };
@@ -325,7 +339,7 @@ bool Engine<Residual, kRot>::Evaluate(const Pose& pose,
     const Eigen::Vector3d& point = points[p];
     PointBlocks& blocks = out->points[p];
     // View 1: the reference camera sees the point in its own frame.
-    if (!EvaluateObservation(residuals_[0][p], point, &r, &jr)) return false;
+    if (!EvaluateObservation(residuals_[0][p], focal_[0], point, &r, &jr)) return false;
     double weight = loss_.Apply(r.squaredNorm(), constant_points_ ? &out->fixed_cost : &out->cost);
     jr *= weight;
     r *= weight;
@@ -333,7 +347,7 @@ bool Engine<Residual, kRot>::Evaluate(const Pose& pose,
     blocks.gp.noalias() = jr.transpose() * r;
     for (int j = 0; j < 2; ++j) {
       const Eigen::Vector3d x_cam = rotation[j] * (point - center[j]);
-      if (!EvaluateObservation(residuals_[j + 1][p], x_cam, &r, &jr)) return false;
+      if (!EvaluateObservation(residuals_[j + 1][p], focal_[j + 1], x_cam, &r, &jr)) return false;
       weight = loss_.Apply(r.squaredNorm(), &out->cost);
       jr *= weight;
       r *= weight;
@@ -377,14 +391,15 @@ bool Engine<Residual, kRot>::ComputeStep(double radius,
                                          double* model_cost_change) {
   const Linearization& lin = current_;
   PoseMatrix reduced = lin.hcc;
-  for (int i = 0; i < kSize; ++i) reduced(i, i) += Damping(lin.hcc(i, i), pose_scale_[i], radius);
+  for (int i = 0; i < kSize; ++i)
+    reduced(i, i) += Damping(lin.hcc(i, i), pose_scale_squared_[i], radius);
   PoseVector rhs = -lin.gc;
   if (!constant_points_) {
     for (std::size_t p = 0; p < lin.points.size(); ++p) {
       const PointBlocks& blocks = lin.points[p];
       Eigen::Matrix3d damped = blocks.hpp;
       for (int i = 0; i < 3; ++i) {
-        damped(i, i) += Damping(blocks.hpp(i, i), point_scale_[p][i], radius);
+        damped(i, i) += Damping(blocks.hpp(i, i), point_scale_squared_[p][i], radius);
       }
       point_inverse_[p] = damped.inverse();
       const Eigen::Matrix<double, kSize, 3> w = blocks.hpc.transpose() * point_inverse_[p];
@@ -511,9 +526,12 @@ void Engine<Residual, kRot>::Solve(ceres::Solver::Summary* summary) {
     return;
   }
   summary->initial_cost = current_.cost + current_.fixed_cost;
-  for (int i = 0; i < kSize; ++i) pose_scale_[i] = 1.0 / (1.0 + std::sqrt(current_.hcc(i, i)));
+  for (int i = 0; i < kSize; ++i) {
+    pose_scale_squared_[i] = std::pow(1.0 + std::sqrt(current_.hcc(i, i)), -2);
+  }
   for (int p = 0; p < num_points; ++p) {
-    point_scale_[p] = (1.0 + current_.points[p].hpp.diagonal().array().sqrt()).inverse().matrix();
+    point_scale_squared_[p] =
+        (1.0 + current_.points[p].hpp.diagonal().array().sqrt()).square().inverse().matrix();
   }
   double x_norm = AmbientNorm(x_, points_);
   double gradient_max_norm = GradientMaxNorm();

@@ -302,16 +302,20 @@ void ThreeViewBundleAdjuster::BuildCeresProblem() {
 
 void ThreeViewBundleAdjuster::SetEliminationOrdering(ceres::Solver::Options* solver_options) {
   // The points first, then the cameras: the ordering the Schur solvers' preprocessor would search
-  // for, given. Only over the adjuster's own blocks: blocks a caller added keep Ceres' search.
+  // for, given. Only over the adjuster's own blocks: blocks a caller added keep Ceres' search. A
+  // group is ordered by address, so each camera block has its own group, in the order Ceres' search
+  // finds them (yaw2, C2, yaw3, C3: the order the residual blocks introduced them), which keeps
+  // Ceres' arithmetic, and the dedicated engine's agreement with it, as without the ordering.
   const bool schur = solver_options->linear_solver_type == ceres::DENSE_SCHUR ||
                      solver_options->linear_solver_type == ceres::SPARSE_SCHUR ||
                      solver_options->linear_solver_type == ceres::ITERATIVE_SCHUR;
   if (!schur || problem_->NumParameterBlocks() != static_cast<int>(points_.size()) + 4) return;
   auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
   for (Eigen::Vector3d& point : points_) ordering->AddElementToGroup(point.data(), 0);
+  int group = 1;
   for (int view = 2; view <= 3; ++view) {
-    ordering->AddElementToGroup(RotationBlock(view), 1);
-    ordering->AddElementToGroup(CenterBlock(view), 1);
+    ordering->AddElementToGroup(RotationBlock(view), group++);
+    ordering->AddElementToGroup(CenterBlock(view), group++);
   }
   solver_options->linear_solver_ordering = std::move(ordering);
 }

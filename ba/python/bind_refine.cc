@@ -6,6 +6,7 @@
 
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "bindings.h"
@@ -25,6 +26,10 @@ void BindBundleAdjustmentOptions(py::module_& m) {
   OptionsClass<BundleOptions> options(
       m, "ThreeViewBundleAdjustmentOptions",
       "Three-view bundle adjustment: rotation model, loss, sigmas, Ceres solver settings.");
+  py::enum_<BundleOptions::Engine>(options.cls(), "Engine")
+      .value("CERES", BundleOptions::Engine::kCeres, "ceres::Solve on the adjuster's problem")
+      .value("DEDICATED", BundleOptions::Engine::kDedicated,
+             "trigrav's own Levenberg-Marquardt with the points eliminated, same optimum");
   py::enum_<BundleOptions::RotationModel>(options.cls(), "RotationModel")
       .value("YAW_ONLY", BundleOptions::RotationModel::kYawOnly,
              "pitch and roll as the gravity says; one yaw per camera")
@@ -43,7 +48,8 @@ void BindBundleAdjustmentOptions(py::module_& m) {
       .value("SPARSE_SCHUR", ceres::SPARSE_SCHUR)
       .value("ITERATIVE_SCHUR", ceres::ITERATIVE_SCHUR)
       .value("CGNR", ceres::CGNR);
-  options.Field("rotation_model", &BundleOptions::rotation_model, "RotationModel (YAW_ONLY)")
+  options.Field("engine", &BundleOptions::engine, "Engine (CERES)")
+      .Field("rotation_model", &BundleOptions::rotation_model, "RotationModel (YAW_ONLY)")
       .Field("loss", &BundleOptions::loss, "LossType (HUBER)")
       .Field("loss_scale_px", &BundleOptions::loss_scale_px, "loss scale on pixel residuals (2)")
       .Field("pixel_sigma_px", &BundleOptions::pixel_sigma_px,
@@ -107,6 +113,9 @@ void BindRefinement(py::module_& m) {
           "7 x 7 (YAW_ONLY: yaw2, yaw3, u2 (2), C3 (3)) or 11 x 11 (GRAVITY_PRIOR: omega2, "
           "omega3, u2, C3); shape (0, 0) when not computed")
       .def_readonly("summary", &ThreeViewRefinement::summary)
+      .def_readonly("build_s", &ThreeViewRefinement::build_s, "adjuster set-up, seconds")
+      .def_readonly("solve_s", &ThreeViewRefinement::solve_s)
+      .def_readonly("covariance_s", &ThreeViewRefinement::covariance_s)
       .def("__repr__", [](const ThreeViewRefinement& r) {
         return "ThreeViewRefinement(success=" + std::string(r.summary.success ? "True" : "False") +
                ", triplets=" + std::to_string(r.triplets.size()) +
@@ -156,11 +165,25 @@ void BindInitializeAndRefine(py::module_& m) {
       .def_readonly("ransac_s", &ThreeViewEstimateTimings::ransac_s)
       .def_readonly("refinement_s", &ThreeViewEstimateTimings::refinement_s)
       .def_readonly("total_s", &ThreeViewEstimateTimings::total_s)
+      .def_readonly("build_s", &ThreeViewEstimateTimings::build_s)
+      .def_readonly("solve_s", &ThreeViewEstimateTimings::solve_s)
+      .def_readonly("covariance_s", &ThreeViewEstimateTimings::covariance_s)
+      .def_readonly("reclassification_s", &ThreeViewEstimateTimings::reclassification_s)
       .def("__repr__", [](const ThreeViewEstimateTimings& t) {
-        return "ThreeViewEstimateTimings(ransac_s=" +
-               std::string(py::repr(py::float_(t.ransac_s))) +
-               ", refinement_s=" + std::string(py::repr(py::float_(t.refinement_s))) +
-               ", total_s=" + std::string(py::repr(py::float_(t.total_s))) + ")";
+        const std::pair<const char*, double> fields[] = {
+            {"ransac_s", t.ransac_s},
+            {"refinement_s", t.refinement_s},
+            {"total_s", t.total_s},
+            {"build_s", t.build_s},
+            {"solve_s", t.solve_s},
+            {"covariance_s", t.covariance_s},
+            {"reclassification_s", t.reclassification_s}};
+        std::string repr = "ThreeViewEstimateTimings(";
+        for (const auto& [name, value] : fields) {
+          if (repr.back() != '(') repr += ", ";
+          repr += std::string(name) + "=" + std::string(py::repr(py::float_(value)));
+        }
+        return repr + ")";
       });
 
   py::class_<ThreeViewEstimate>(m, "ThreeViewEstimate", "Result of initialize_and_refine.")

@@ -235,6 +235,14 @@ def estimate_three_view_pose_robust(
 ) -> RobustThreeViewEstimate: ...
 
 class ThreeViewBundleAdjustmentOptions:
+    class Engine:
+        CERES: ClassVar[ThreeViewBundleAdjustmentOptions.Engine]
+        DEDICATED: ClassVar[ThreeViewBundleAdjustmentOptions.Engine]
+        def __init__(self, value: int) -> None: ...
+        @property
+        def name(self) -> str: ...
+        @property
+        def value(self) -> int: ...
     class RotationModel:
         YAW_ONLY: ClassVar[ThreeViewBundleAdjustmentOptions.RotationModel]
         GRAVITY_PRIOR: ClassVar[ThreeViewBundleAdjustmentOptions.RotationModel]
@@ -265,6 +273,7 @@ class ThreeViewBundleAdjustmentOptions:
         def name(self) -> str: ...
         @property
         def value(self) -> int: ...
+    engine: ThreeViewBundleAdjustmentOptions.Engine
     rotation_model: ThreeViewBundleAdjustmentOptions.RotationModel
     loss: ThreeViewBundleAdjustmentOptions.LossType
     loss_scale_px: float
@@ -282,6 +291,7 @@ class ThreeViewBundleAdjustmentOptions:
     def __init__(
         self,
         *,
+        engine: ThreeViewBundleAdjustmentOptions.Engine = ...,
         rotation_model: ThreeViewBundleAdjustmentOptions.RotationModel = ...,
         loss: ThreeViewBundleAdjustmentOptions.LossType = ...,
         loss_scale_px: float = 2.0,
@@ -335,6 +345,12 @@ class ThreeViewRefinement:
     def covariance(self) -> Array: ...  # 7 x 7, 11 x 11, or 0 x 0
     @property
     def summary(self) -> ThreeViewBundleAdjustmentSummary: ...
+    @property
+    def build_s(self) -> float: ...
+    @property
+    def solve_s(self) -> float: ...
+    @property
+    def covariance_s(self) -> float: ...
 
 def refine_three_view_pose(
     observations: ThreeViewObservations,
@@ -370,6 +386,14 @@ class ThreeViewEstimateTimings:
     def refinement_s(self) -> float: ...
     @property
     def total_s(self) -> float: ...
+    @property
+    def build_s(self) -> float: ...
+    @property
+    def solve_s(self) -> float: ...
+    @property
+    def covariance_s(self) -> float: ...
+    @property
+    def reclassification_s(self) -> float: ...
 
 class ThreeViewEstimate:
     @property

@@ -55,6 +55,27 @@ def test_initialize_and_refine_result_recovers_the_truth(scene, observations):
     assert estimate.ransac.num_inliers == estimate.initial_inliers.sum()
 
 
+def test_dedicated_engine_reaches_the_ceres_optimum(scene, observations):
+    def refine(engine):
+        options = trigrav.InitializeAndRefineOptions(
+            bundle_adjustment=trigrav.ThreeViewBundleAdjustmentOptions(engine=engine))
+        return trigrav.initialize_and_refine(observations, options)
+
+    ceres = refine(trigrav.ThreeViewBundleAdjustmentOptions.Engine.CERES)
+    dedicated = refine(trigrav.ThreeViewBundleAdjustmentOptions.Engine.DEDICATED)
+    assert ceres.success and dedicated.success
+    assert np.array_equal(ceres.inliers, dedicated.inliers)
+    assert math.isclose(dedicated.refinement.summary.final_cost,
+                        ceres.refinement.summary.final_cost, rel_tol=1e-8)
+    for view in ("cam2_from_cam1", "cam3_from_cam1"):
+        np.testing.assert_allclose(getattr(dedicated.refined, view).R,
+                                   getattr(ceres.refined, view).R, atol=1e-9)
+    timings = dedicated.timings
+    assert 0.0 < timings.solve_s <= timings.refinement_s <= timings.total_s
+    assert "engine=Engine.DEDICATED" in repr(trigrav.ThreeViewBundleAdjustmentOptions(
+        engine=trigrav.ThreeViewBundleAdjustmentOptions.Engine.DEDICATED))
+
+
 def test_every_solver_finds_the_true_pose():
     scene = make_scene(2, num_points=8, outlier_ratio=0.0)
     truth = scene.ground_truth

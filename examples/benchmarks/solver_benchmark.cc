@@ -2,6 +2,8 @@
 //   BM_Solver/<method>    every solver of kInitialSolvers at its minimal sample: the gravity-aware
 //                         and trifocal ones on rays already in gravity-aligned frames (only the
 //                         solver is timed), the two-view ones (5pt, 8pt) on pair (1,2) alone;
+//   BM_Solver/3pt-gravity the gravity overload of the 3-point solver on the same scenes' raw rays
+//                         and gravity directions (alignment and back-transform timed too);
 //   BM_Solver/<method>/20 the linear solvers (7pt-linear, 8pt) with 20 triplets;
 //   BM_Solver/4pt-unpolished, BM_Solver/4pt-closed-form  4-point variants (derivations.md
 //   section 4.3 without the
@@ -17,6 +19,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <array>
 #include <random>
 #include <string>
 #include <vector>
@@ -45,13 +48,26 @@ struct AlignedProblem {
   ThreeViewPose ground_truth;
 };
 
-std::vector<AlignedProblem> MakeProblems(int num_points, int count) {
+// The same scene as a gravity overload sees it: raw rays, each camera's gravity, the original
+// frames' ground truth.
+struct RawProblem {
+  std::array<std::vector<Eigen::Vector3d>, 3> rays;
+  std::array<Eigen::Vector3d, 3> gravity_in_cam;
+  ThreeViewPose ground_truth;
+};
+
+std::vector<trigrav::SyntheticScene> MakeScenes(int num_points, int count) {
   std::mt19937_64 rng(2026);
   trigrav::SyntheticSceneOptions options;
   options.num_points = num_points;
+  std::vector<trigrav::SyntheticScene> scenes;
+  for (int i = 0; i < count; ++i) scenes.push_back(trigrav::GenerateSyntheticScene(options, &rng));
+  return scenes;
+}
+
+std::vector<AlignedProblem> MakeProblems(int num_points, int count) {
   std::vector<AlignedProblem> problems;
-  for (int i = 0; i < count; ++i) {
-    const trigrav::SyntheticScene scene = trigrav::GenerateSyntheticScene(options, &rng);
+  for (const trigrav::SyntheticScene& scene : MakeScenes(num_points, count)) {
     const auto& align = scene.gravity_alignment_true;
     AlignedProblem problem;
     problem.x1 = trigrav::AlignRays(align[0], scene.rays[0]);
@@ -61,6 +77,14 @@ std::vector<AlignedProblem> MakeProblems(int num_points, int count) {
     problem.ground_truth = trigrav::UnalignThreeViewPose(
         scene.ground_truth, align[0].transpose(), align[1].transpose(), align[2].transpose());
     problems.push_back(problem);
+  }
+  return problems;
+}
+
+std::vector<RawProblem> MakeRawProblems(int num_points, int count) {
+  std::vector<RawProblem> problems;
+  for (const trigrav::SyntheticScene& scene : MakeScenes(num_points, count)) {
+    problems.push_back({scene.rays, scene.gravity_in_cam_measured, scene.ground_truth});
   }
   return problems;
 }
@@ -88,16 +112,38 @@ void RunSolverBenchmark(benchmark::State& state, int num_points, Solver solve) {
   state.counters["found"] = static_cast<double>(found) / problems.size();
 }
 
+// RunSolverBenchmark for a gravity overload: raw rays and each camera's gravity of the same scenes.
+template <typename Solver>
+void RunGravitySolverBenchmark(benchmark::State& state, int num_points, Solver solve) {
+  const std::vector<RawProblem> problems = MakeRawProblems(num_points, 100);
+  std::vector<ThreeViewPose> solutions;
+  solutions.reserve(64);
+  auto run = [&](const RawProblem& p) {
+    return solve(p.rays[0], p.rays[1], p.rays[2], p.gravity_in_cam[0], p.gravity_in_cam[1],
+                 p.gravity_in_cam[2], &solutions);
+  };
+  int found = 0;
+  for (const RawProblem& p : problems) {
+    if (run(p) > 0) {
+      const trigrav::ThreeViewPoseErrors e =
+          trigrav::ComputeThreeViewPoseErrors(p.ground_truth, solutions[0]);
+      found += e.MaxAngleDeg() < 1e-6;
+    }
+  }
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(run(problems[i++ % problems.size()]));
+    benchmark::ClobberMemory();
+  }
+  state.counters["found"] = static_cast<double>(found) / problems.size();
+}
+
 // Two-view counterpart of RunSolverBenchmark: raw rays of views 1 and 2 (no gravity alignment);
 // "found" = fraction of the scenes with the truth (1e-6 deg) among the solutions (they are not
 // ranked).
 template <typename Solver>
 void RunTwoViewSolverBenchmark(benchmark::State& state, int num_points, Solver solve) {
-  std::mt19937_64 rng(2026);
-  trigrav::SyntheticSceneOptions options;
-  options.num_points = num_points;
-  std::vector<trigrav::SyntheticScene> scenes;
-  for (int i = 0; i < 100; ++i) scenes.push_back(trigrav::GenerateSyntheticScene(options, &rng));
+  const std::vector<trigrav::SyntheticScene> scenes = MakeScenes(num_points, 100);
   std::vector<trigrav::CameraPose> solutions;
   solutions.reserve(16);
   int found = 0;
@@ -130,6 +176,15 @@ void RegisterSolver(const std::string& name, int num_points, Solver solve) {
                                });
 }
 
+// Gravity overloads on raw rays.
+template <typename Solver>
+void RegisterGravitySolver(const std::string& name, int num_points, Solver solve) {
+  benchmark::RegisterBenchmark(("BM_Solver/" + name).c_str(),
+                               [num_points, solve](benchmark::State& state) {
+                                 RunGravitySolverBenchmark(state, num_points, solve);
+                               });
+}
+
 // Two-view solvers on pair (1,2).
 template <typename Solver>
 void RegisterTwoViewSolver(const std::string& name, int num_points, Solver solve) {
@@ -143,6 +198,11 @@ void RegisterSolverBenchmarks() {
   using trigrav::InitialSolver;
   const auto trifocal_3pt = [](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
     return trigrav::SolveTrifocal3pt(x1, x2, x3, solutions);
+  };
+  const auto trifocal_3pt_gravity = [](const auto& x1, const auto& x2, const auto& x3,
+                                       const auto& g1, const auto& g2, const auto& g3,
+                                       auto* solutions) {
+    return trigrav::SolveTrifocal3pt(x1, x2, x3, g1, g2, g3, solutions);
   };
   const auto trifocal_3pt_sextic = [](const auto& x1, const auto& x2, const auto& x3,
                                       auto* solutions) {
@@ -166,6 +226,7 @@ void RegisterSolverBenchmarks() {
     switch (solver) {
       case InitialSolver::kTrifocal3pt:
         RegisterSolver(name, n, trifocal_3pt);
+        RegisterGravitySolver(name + "-gravity", n, trifocal_3pt_gravity);
         break;
       case InitialSolver::kTrifocal3ptSextic:
         RegisterSolver(name, n, trifocal_3pt_sextic);

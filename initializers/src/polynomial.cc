@@ -258,15 +258,19 @@ int SolveQuarticReal(const std::array<double, 5>& c,
   // Ferrari: (y^2 + p/2 + m)^2 = 2m (y - q/(4m))^2 when m solves the resolvent cubic
   // m^3 + p m^2 + (p^2/4 - r) m - q^2/8 = 0; the largest root is the best conditioned choice.
   const double m = LargestRealCubicRoot(p, 0.25 * p * p - r, -0.125 * q * q);
-  const double scale =
-      std::max({std::abs(p), std::sqrt(std::abs(r)), std::cbrt(std::abs(q)), 1e-300});
+  // The size of the depressed quartic's terms, max(|p|, |r|^(1/2), |q|^(1/3)), is compared with m
+  // in powers (no cube root): m > tol * scale iff m > tol |p|, m^2 > tol^2 |r| and m^3 > tol^3 |q|.
+  constexpr double kTolerance = 64.0 * kEps;
+  const bool m_significant = m > kTolerance * std::max(std::abs(p), 1e-300) &&
+                             m * m > kTolerance * kTolerance * std::abs(r) &&
+                             m * m * m > kTolerance * kTolerance * kTolerance * std::abs(q);
 
   std::array<double, 4> y;
   // Real parts of near-real complex pairs are not roots: Newton could walk them onto a neighbouring
   // real root and duplicate it, so they are left as they are.
   std::array<bool, 4> approximate = {false, false, false, false};
   int count = 0;
-  if (m > 64.0 * kEps * scale) {
+  if (m_significant) {
     // y^2 -/+ s y + (p/2 + m +/- q/(2s)) = 0 with s = sqrt(2m).
     const double s = std::sqrt(2.0 * m);
     const double offset = 0.5 * q / s;
@@ -275,12 +279,14 @@ int SolveQuarticReal(const std::array<double, 5>& c,
     count += SolveMonicQuadratic(s, 0.5 * p + m - offset, max_imag, &y[count], &approximate[count]);
   } else {
     // q ~ 0: biquadratic y^4 + p y^2 + r, y^2 = z with z^2 + p z + r = 0.
+    const double scale =
+        std::max({std::abs(p), std::sqrt(std::abs(r)), std::cbrt(std::abs(q)), 1e-300});
     double z[2];
     bool unused;
     const int z_count = SolveMonicQuadratic(p, r, 0.0, z, &unused);
     for (int i = 0; i < z_count; ++i) {
       if (z[i] < 0.0) {
-        if (z[i] < -64.0 * kEps * scale * scale) continue;
+        if (z[i] < -kTolerance * scale * scale) continue;
         y[count++] = 0.0;
         continue;
       }

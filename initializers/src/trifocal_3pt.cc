@@ -17,6 +17,8 @@ namespace trigrav {
 namespace {
 
 using Rays = std::vector<Eigen::Vector3d>;
+// The rays of one view of a minimal sample, copied to fixed storage.
+using MinimalRays = std::array<Eigen::Vector3d, 3>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 
 constexpr std::size_t kNumTriplets = 3;
@@ -92,7 +94,6 @@ struct TrigLinear {
   Eigen::Vector3d A, B, C;
   explicit TrigLinear(const Eigen::Vector3d& x)
       : A(x.x(), 0.0, x.z()), B(x.z(), 0.0, -x.x()), C(0.0, x.y(), 0.0) {}
-  Eigen::Vector3d Rotated(const Yaw& yaw) const { return yaw.c * A + yaw.s * B + C; }
 };
 
 // Picks the Cayley offset: the first of kOffsets whose leading coefficient (the value of the
@@ -147,13 +148,21 @@ struct TrigQuadratic {
 // Real roots of the pair (1, k) that pass cheirality. Returns 0 when det[m_1; m_2; m_3] vanishes
 // for every yaw (two of the three triplets coincide, or all three points coincide): the pair then
 // has a continuum of solutions, not a few.
-int SolveUprightPair(const Rays& x1, const Rays& xk, std::array<PairRoot, 4>* roots) {
+int SolveUprightPair(const MinimalRays& x1, const MinimalRays& xk, std::array<PairRoot, 4>* roots) {
+  // m_n(theta) = cos P_n + sin Q_n + S_n with P_n = A_n x xk_n, Q_n = B_n x xk_n, S_n = C_n x xk_n
+  // (TrigLinear), written out for the zeros of A, B, C (S_n has no y part); likewise
+  // (R_y(theta) x1_n) . xk_n = cos p_n + sin q_n + s_n.
   std::array<Eigen::Vector3d, 3> P, Q, S;
-  std::array<TrigLinear, 3> rotated1 = {TrigLinear(x1[0]), TrigLinear(x1[1]), TrigLinear(x1[2])};
+  std::array<double, 3> p, q, s;
   for (std::size_t n = 0; n < kNumTriplets; ++n) {
-    P[n] = rotated1[n].A.cross(xk[n]);
-    Q[n] = rotated1[n].B.cross(xk[n]);
-    S[n] = rotated1[n].C.cross(xk[n]);
+    const double x = x1[n].x(), y = x1[n].y(), z = x1[n].z();
+    const double a = xk[n].x(), b = xk[n].y(), c = xk[n].z();
+    P[n] = Eigen::Vector3d(-z * b, z * a - x * c, x * b);
+    Q[n] = Eigen::Vector3d(x * b, -x * a - z * c, z * b);
+    S[n] = Eigen::Vector3d(y * c, 0.0, -y * a);
+    p[n] = x * a + z * c;
+    q[n] = z * a - x * c;
+    s[n] = y * b;
   }
   // cos and sin of 2 pi j / 5.
   static constexpr double kC[5] = {1.0, 0.30901699437494742, -0.80901699437494742,
@@ -200,13 +209,11 @@ int SolveUprightPair(const Rays& x1, const Rays& xk, std::array<PairRoot, 4>* ro
   for (int i = 0; i < num_t; ++i) {
     PairRoot& root = (*roots)[count];
     root.yaw = Yaw::FromCayley(t[i], offset);
+    const double c = root.yaw.c, sn = root.yaw.s;
     // The epipole R_k c_k is orthogonal to the three epipolar normals m_n: take the best
     // conditioned cross product of two of them.
-    std::array<Eigen::Vector3d, 3> m, rotated;
-    for (std::size_t n = 0; n < kNumTriplets; ++n) {
-      rotated[n] = rotated1[n].Rotated(root.yaw);
-      m[n] = rotated[n].cross(xk[n]);
-    }
+    std::array<Eigen::Vector3d, 3> m;
+    for (std::size_t n = 0; n < kNumTriplets; ++n) m[n] = c * P[n] + sn * Q[n] + S[n];
     Eigen::Vector3d epipole = m[0].cross(m[1]);
     for (const Eigen::Vector3d& candidate : {m[1].cross(m[2]), m[2].cross(m[0])}) {
       if (candidate.squaredNorm() > epipole.squaredNorm()) epipole = candidate;
@@ -215,21 +222,26 @@ int SolveUprightPair(const Rays& x1, const Rays& xk, std::array<PairRoot, 4>* ro
     if (!(norm > 0.0) || !std::isfinite(norm)) continue;
     epipole /= norm;
     // View-1 depths lambda_n = ((xk x e) . (xk x R x1)) / |xk x R x1|^2, xk x R x1 = -m_n
-    // (derivations.md section 4.6).
+    // (derivations.md section 4.6). The sign of c_k is free: all depths must be positive for one
+    // of the two signs, which the numerators decide before any division.
+    std::array<double, 3> numerator;
     for (std::size_t n = 0; n < kNumTriplets; ++n) {
-      const double denominator = m[n].squaredNorm();
-      root.depth[n] = denominator > 0.0 ? -xk[n].cross(epipole).dot(m[n]) / denominator : 0.0;
+      numerator[n] = -xk[n].cross(epipole).dot(m[n]);
     }
-    // The sign of c_k is free: all depths must be positive for one of the two signs.
-    if ((root.depth.array() < 0.0).all()) {
-      epipole = -epipole;
-      root.depth = -root.depth;
-    }
-    if (!(root.depth.array() > 0.0).all()) continue;
-    // In front of camera k too: (R (lambda x1 - c)) . xk = (lambda R x1 - e) . xk > 0.
+    const double sign = numerator[0] < 0.0 ? -1.0 : 1.0;
     bool in_front = true;
     for (std::size_t n = 0; n < kNumTriplets; ++n) {
-      in_front = in_front && (root.depth[n] * rotated[n] - epipole).dot(xk[n]) > 0.0;
+      const double denominator = m[n].squaredNorm();
+      in_front = in_front && sign * numerator[n] > 0.0 && denominator > 0.0;
+      if (!in_front) break;
+      root.depth[n] = sign * numerator[n] / denominator;
+    }
+    if (!in_front) continue;
+    epipole *= sign;
+    // In front of camera k too: (R (lambda x1 - c)) . xk = lambda (R x1) . xk - e . xk > 0.
+    for (std::size_t n = 0; n < kNumTriplets; ++n) {
+      in_front =
+          in_front && root.depth[n] * (c * p[n] + sn * q[n] + s[n]) - epipole.dot(xk[n]) > 0.0;
     }
     if (!in_front || !root.depth.allFinite()) continue;
     root.epipole = epipole;
@@ -238,17 +250,30 @@ int SolveUprightPair(const Rays& x1, const Rays& xk, std::array<PairRoot, 4>* ro
   return count;
 }
 
-int SolveDecoupledAligned(const Rays& x1,
-                          const Rays& x2,
-                          const Rays& x3,
-                          std::vector<ThreeViewPose>* solutions) {
+// A candidate of the decoupled solver between gravity-aligned frames: R_k = R_y(theta_k) and the
+// fourth column t_k of camera k = 2, 3.
+struct YawCandidate {
+  Yaw yaw2, yaw3;
+  Eigen::Vector3d t2, t3;
+};
+
+// The decoupled solver on aligned rays (steps 1-3 of trifocal_3pt.h): writes the candidates best
+// first and returns their count. Every candidate is finite: yaws from finite roots, unit epipoles,
+// finite kappa.
+int SolveDecoupledAligned(const MinimalRays& x1,
+                          const MinimalRays& x2,
+                          const MinimalRays& x3,
+                          std::array<YawCandidate, 16>* solutions) {
+  // Camera 2 sets the scale |c_2| = 1, undefined without parallax in pair (1,2); camera 3 may
+  // have none (c_3 = 0 is a valid pose).
+  if (internal::PairExplainedByYaw(x1, x2)) return 0;
   std::array<PairRoot, 4> roots2, roots3;
   const int count2 = SolveUprightPair(x1, x2, &roots2);
   if (count2 == 0) return 0;
   const int count3 = SolveUprightPair(x1, x3, &roots3);
 
   struct Candidate {
-    double residual, kappa;
+    double residual_squared, kappa;
     int i2, i3;
   };
   std::array<Candidate, 16> candidates;
@@ -257,30 +282,24 @@ int SolveDecoupledAligned(const Rays& x1,
     const Eigen::Vector3d& depth2 = roots2[i2].depth;
     for (int i3 = 0; i3 < count3; ++i3) {
       const Eigen::Vector3d& depth3 = roots3[i3].depth;
-      // Scale of c_3 that best matches the depths of pair (1,2); the depth-ratio residual ranks.
+      // Scale of c_3 that best matches the depths of pair (1,2); the depth-ratio residual
+      // |lambda_2 - kappa lambda_3| / |lambda_2| ranks (compared squared).
       const double kappa = depth2.dot(depth3) / depth3.squaredNorm();
-      const double residual = (depth2 - kappa * depth3).norm() / depth2.norm();
-      if (!(kappa > 0.0) || !std::isfinite(kappa) || !std::isfinite(residual)) continue;
-      candidates[count++] = {residual, kappa, i2, i3};
+      const double residual_squared =
+          (depth2 - kappa * depth3).squaredNorm() / depth2.squaredNorm();
+      if (!(kappa > 0.0) || !std::isfinite(kappa) || !std::isfinite(residual_squared)) continue;
+      candidates[count++] = {residual_squared, kappa, i2, i3};
     }
   }
   SortByKey(
-      count, [](const Candidate& c) { return c.residual; }, &candidates);
-  int written = 0;
+      count, [](const Candidate& c) { return c.residual_squared; }, &candidates);
   for (int i = 0; i < count; ++i) {
     const PairRoot& root2 = roots2[candidates[i].i2];
     const PairRoot& root3 = roots3[candidates[i].i3];
-    // R = R_y(theta), t = -R c = -epipole (|c_2| = 1, c_3 scaled by kappa).
-    ThreeViewPose pose;
-    pose.cam2_from_cam1.R = root2.yaw.Matrix();
-    pose.cam2_from_cam1.t = -root2.epipole;
-    pose.cam3_from_cam1.R = root3.yaw.Matrix();
-    pose.cam3_from_cam1.t = -candidates[i].kappa * root3.epipole;
-    if (!pose.IsFinite()) continue;
-    solutions->push_back(pose);
-    ++written;
+    // t = -R c = -epipole (|c_2| = 1, c_3 scaled by kappa).
+    (*solutions)[i] = {root2.yaw, root3.yaw, -root2.epipole, -candidates[i].kappa * root3.epipole};
   }
-  return written;
+  return count;
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -461,12 +480,19 @@ int SolveTrifocal3pt(const Rays& x1,
                      std::vector<ThreeViewPose>* solutions) {
   internal::CheckTriplets("SolveTrifocal3pt", kNumTriplets, kNumTriplets, x1, x2, x3, solutions);
   solutions->clear();
-  // Camera 2 sets the scale |c_2| = 1, undefined without parallax in pair (1,2); camera 3 may
-  // have none (c_3 = 0 is a valid pose).
-  if (internal::PairExplainedByYaw(x1, x2)) return 0;
-  return SolveDecoupledAligned(x1, x2, x3, solutions);
+  std::array<YawCandidate, 16> candidates;
+  const int count = SolveDecoupledAligned({x1[0], x1[1], x1[2]}, {x2[0], x2[1], x2[2]},
+                                          {x3[0], x3[1], x3[2]}, &candidates);
+  for (int i = 0; i < count; ++i) {
+    const YawCandidate& candidate = candidates[i];
+    solutions->push_back(
+        {{candidate.yaw2.Matrix(), candidate.t2}, {candidate.yaw3.Matrix(), candidate.t3}});
+  }
+  return count;
 }
 
+// Aligns the rays into fixed storage and maps each candidate back in closed form from its yaws
+// (GravityFrames, derivations.md section 2.2): no heap allocation, no 3x3 products per candidate.
 int SolveTrifocal3pt(const Rays& x1,
                      const Rays& x2,
                      const Rays& x3,
@@ -474,11 +500,25 @@ int SolveTrifocal3pt(const Rays& x1,
                      const Eigen::Vector3d& gravity_in_cam2,
                      const Eigen::Vector3d& gravity_in_cam3,
                      std::vector<ThreeViewPose>* solutions) {
-  return internal::SolveWithGravity(
-      "SolveTrifocal3pt", x1, x2, x3, gravity_in_cam1, gravity_in_cam2, gravity_in_cam3, solutions,
-      [](const Rays& y1, const Rays& y2, const Rays& y3, std::vector<ThreeViewPose>* out) {
-        return SolveTrifocal3pt(y1, y2, y3, out);
-      });
+  const internal::GravityFrames frames("SolveTrifocal3pt", gravity_in_cam1, gravity_in_cam2,
+                                       gravity_in_cam3);
+  internal::CheckTriplets("SolveTrifocal3pt", kNumTriplets, kNumTriplets, x1, x2, x3, solutions);
+  solutions->clear();
+  std::array<MinimalRays, 3> aligned;
+  for (std::size_t n = 0; n < kNumTriplets; ++n) {
+    aligned[0][n] = frames.alignment(0) * x1[n];
+    aligned[1][n] = frames.alignment(1) * x2[n];
+    aligned[2][n] = frames.alignment(2) * x3[n];
+  }
+  std::array<YawCandidate, 16> candidates;
+  const int count = SolveDecoupledAligned(aligned[0], aligned[1], aligned[2], &candidates);
+  for (int i = 0; i < count; ++i) {
+    const YawCandidate& candidate = candidates[i];
+    solutions->push_back(
+        {frames.UnalignYawPose(1, candidate.yaw2.c, candidate.yaw2.s, candidate.t2),
+         frames.UnalignYawPose(2, candidate.yaw3.c, candidate.yaw3.s, candidate.t3)});
+  }
+  return count;
 }
 
 int SolveTrifocal3ptSextic(const Rays& x1,

@@ -125,14 +125,19 @@ bool EnforceConstraints(const IncidenceMatrix& M,
   // unless an epipole degenerates) and b = R_E a: b = smallest right singular vector of M E R_E^-1,
   // then a = R_E^-1 b. E is used through its non-zeros only.
   const std::array<BasisEntry, 26> E = ConstrainedTensorBasis(epipole2, epipole3);
-  Eigen::Matrix<double, 17, 6> E_dense = Eigen::Matrix<double, 17, 6>::Zero();
   Eigen::Matrix<double, IncidenceMatrix::RowsAtCompileTime, 6> ME =
       Eigen::Matrix<double, IncidenceMatrix::RowsAtCompileTime, 6>::Zero(M.rows(), 6);
-  for (const BasisEntry& entry : E) {
-    E_dense(entry.q, entry.a) = entry.value;
-    ME.col(entry.a) += entry.value * M.col(entry.q);
+  for (const BasisEntry& entry : E) ME.col(entry.a) += entry.value * M.col(entry.q);
+  // E^T E from the non-zeros: a row q of E adds the products of its own entries (the table lists
+  // each row's entries next to each other).
+  Eigen::Matrix<double, 6, 6> gram = Eigen::Matrix<double, 6, 6>::Zero();
+  for (std::size_t i = 0; i < E.size(); ++i) {
+    for (std::size_t j = i; j < E.size() && E[j].q == E[i].q; ++j) {
+      gram(E[i].a, E[j].a) += E[i].value * E[j].value;
+      if (j != i) gram(E[j].a, E[i].a) += E[i].value * E[j].value;
+    }
   }
-  const Eigen::LLT<Eigen::Matrix<double, 6, 6>> cholesky(E_dense.transpose().lazyProduct(E_dense));
+  const Eigen::LLT<Eigen::Matrix<double, 6, 6>> cholesky(gram);
   if (cholesky.info() != Eigen::Success) return false;
   const Eigen::Matrix<double, 6, 6> R_E = cholesky.matrixU();
   const double largest = R_E.diagonal().cwiseAbs().maxCoeff();
@@ -202,17 +207,26 @@ bool EstimatePaperClosedForm(const Vector17d& q, AlignedEstimate* estimate) {
 }
 
 // (c2; c3) = null vector of the stacked translation rows with the yaws fixed (derivations.md
-// section 3.4).
+// section 3.4). Rows = 16: the minimal system at fixed size.
+template <int Rows>
 void ResolveCenters(const std::vector<Eigen::Vector3d>& x1,
                     const std::vector<Eigen::Vector3d>& x2,
                     const std::vector<Eigen::Vector3d>& x3,
                     AlignedEstimate* estimate) {
   const Eigen::Matrix3d R2 = RotationAboutY(estimate->theta2);
   const Eigen::Matrix3d R3 = RotationAboutY(estimate->theta3);
-  const Vector6d centers = internal::SmallestRightSingularVectorOfTriangular<6>(
-      internal::StackedTriangularFactor<6>(x1.size(), [&](std::size_t n) {
-        return internal::TranslationRows(x1[n], x2[n], x3[n], R2, R3);
-      }));
+  const auto rows = [&](std::size_t n) {
+    return internal::TranslationRows(x1[n], x2[n], x3[n], R2, R3);
+  };
+  Eigen::Matrix<double, 6, 6> R_F;
+  if constexpr (Rows == 16) {
+    Eigen::Matrix<double, 16, 6> F;
+    for (std::size_t n = 0; n < 4; ++n) F.middleRows<4>(4 * n) = rows(n);
+    R_F = internal::TriangularFactor(F);
+  } else {
+    R_F = internal::StackedTriangularFactor<6>(x1.size(), rows);
+  }
+  const Vector6d centers = internal::SmallestRightSingularVectorOfTriangular<6>(R_F);
   // Keep the sign of the previous centres so the cheirality vote starts from a consistent guess.
   const double sign =
       centers.head<3>().dot(estimate->center2) + centers.tail<3>().dot(estimate->center3);
@@ -260,7 +274,7 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1,
       break;
   }
   if (!ok || !std::isfinite(estimate.theta2) || !std::isfinite(estimate.theta3)) return 0;
-  if (options.resolve_translations) ResolveCenters(x1, x2, x3, &estimate);
+  if (options.resolve_translations) ResolveCenters<Rows>(x1, x2, x3, &estimate);
   if (options.recovery == Trifocal4ptRecovery::kEnforced) {
     // Epipoles of the current pose, e' ~ R2 c2 and e'' ~ R3 c3, then enforcement and centres again.
     for (int iteration = 0; iteration < options.epipole_iterations; ++iteration) {
@@ -270,7 +284,7 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1,
           !EnforceConstraints(M, epipole2, epipole3, &estimate)) {
         return 0;
       }
-      if (options.resolve_translations) ResolveCenters(x1, x2, x3, &estimate);
+      if (options.resolve_translations) ResolveCenters<Rows>(x1, x2, x3, &estimate);
     }
   }
 

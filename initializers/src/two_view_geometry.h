@@ -35,9 +35,10 @@ constexpr double kMinPairParallax = 1e-4;
 // points at infinity) and the direction of camera k's centre is not determined. The yaw maximises
 // sum_n xk_n . R_y(theta) x1_n (Wahba's problem about one axis, rays weighted by their lengths,
 // which leaves an exact rotation exact). Cheap enough for every minimal solve: a yaw keeps the
-// elevation of a ray, so a first triplet whose elevations differ settles it without the fit.
-inline bool PairExplainedByYaw(const std::vector<Eigen::Vector3d>& x1,
-                               const std::vector<Eigen::Vector3d>& xk) {
+// elevation of a ray, so a first triplet whose elevations differ settles it without the fit. Rays:
+// any container of Eigen::Vector3d with size() and operator[].
+template <typename Rays>
+bool PairExplainedByYaw(const Rays& x1, const Rays& xk) {
   // Elevations y / |x| within kMinPairParallax of each other: a necessary condition, compared
   // squared (|a^2 - b^2| <= 2 |a - b| for |a|, |b| <= 1) with the signs, without division.
   const double y1 = x1[0].y(), yk = xk[0].y();

@@ -164,7 +164,7 @@ TEST(Trifocal3pt, GeneralisesToUnseenScenes) {
   }
 }
 
-// Aligning by hand with the same alignment rotations gives exactly the overload's poses.
+// Aligning by hand with the same alignment rotations gives the overload's poses.
 TEST(Trifocal3pt, GravityOverloadsMatchAligningByHand) {
   for (const NamedSolver& solver : Solvers()) {
     std::mt19937_64 rng(4);
@@ -184,13 +184,22 @@ TEST(Trifocal3pt, GravityOverloadsMatchAligningByHand) {
                            AlignRays(align[2], scene.rays[2]), &by_hand),
             count)
             << solver.name;
+        // The overloads map back in closed form from the yaws (derivations.md section 2.2), so
+        // the poses agree to rounding, not bit for bit.
+        constexpr double kTolerance = 1e-12;
         for (int i = 0; i < count; ++i) {
           const ThreeViewPose unaligned =
               UnalignThreeViewPose(by_hand[i], align[0], align[1], align[2]);
-          EXPECT_EQ(unaligned.cam2_from_cam1.R, from_gravity[i].cam2_from_cam1.R) << solver.name;
-          EXPECT_EQ(unaligned.cam2_from_cam1.t, from_gravity[i].cam2_from_cam1.t) << solver.name;
-          EXPECT_EQ(unaligned.cam3_from_cam1.R, from_gravity[i].cam3_from_cam1.R) << solver.name;
-          EXPECT_EQ(unaligned.cam3_from_cam1.t, from_gravity[i].cam3_from_cam1.t) << solver.name;
+          const CameraPose* expected[2] = {&unaligned.cam2_from_cam1, &unaligned.cam3_from_cam1};
+          const CameraPose* actual[2] = {&from_gravity[i].cam2_from_cam1,
+                                         &from_gravity[i].cam3_from_cam1};
+          for (int k = 0; k < 2; ++k) {
+            EXPECT_LE((expected[k]->R - actual[k]->R).cwiseAbs().maxCoeff(), kTolerance)
+                << solver.name;
+            EXPECT_LE((expected[k]->t - actual[k]->t).cwiseAbs().maxCoeff(),
+                      kTolerance * std::max(1.0, expected[k]->t.norm()))
+                << solver.name;
+          }
         }
       }
     }

@@ -61,7 +61,8 @@ int SolveTrifocal3pt(const std::vector<Eigen::Vector3d>& x1,
 
 // Raw rays K^-1 [u v 1]^T, plus each camera's gravity direction (down, any positive length) in its
 // own frame; the rays are aligned, solved as above and the poses mapped back with the corrected
-// eq. b4 (see gravity.h). Poses are in the original camera frames.
+// eq. b4 (see gravity.h), in closed form from each candidate's yaw (derivations.md section 2.2).
+// Poses are in the original camera frames.
 int SolveTrifocal3pt(const std::vector<Eigen::Vector3d>& x1,
                      const std::vector<Eigen::Vector3d>& x2,
                      const std::vector<Eigen::Vector3d>& x3,

@@ -60,7 +60,7 @@ struct Trifocal4ptOptions {
   // from 3.2 deg (0 passes) to 2.4 (3) and 1.7 (10). With the polish step it is not needed.
   int epipole_iterations = 0;
   // Gauss-Newton steps on the incidence residuals over yaws and centres jointly (step 6 above;
-  // about 1.5 microseconds each). 0 gives the pipeline of derivations.md section 4.7 exactly.
+  // about 1.2 microseconds each). 0 gives the pipeline of derivations.md section 4.7 exactly.
   int polish_iterations = 1;
 
   // Throws std::invalid_argument naming the first bad field: recovery not one of the enumerators,

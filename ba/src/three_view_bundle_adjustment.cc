@@ -10,6 +10,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "robust_loss.h"
 #include "three_view_lm_solver.h"
 #include "trigrav/factors/angle_manifold.h"
 #include "trigrav/factors/reprojection_factors.h"
@@ -20,19 +21,6 @@ namespace trigrav {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
-
-ceres::LossFunction* MakeLoss(ThreeViewBundleAdjustmentOptions::LossType loss, double scale) {
-  using LossType = ThreeViewBundleAdjustmentOptions::LossType;
-  switch (loss) {
-    case LossType::kNone:
-      return nullptr;
-    case LossType::kHuber:
-      return new ceres::HuberLoss(scale);
-    case LossType::kCauchy:
-      return new ceres::CauchyLoss(scale);
-  }
-  return nullptr;
-}
 
 // The factor of triplet i's observation in view k (1 or 2) for the rotation model.
 template <typename Residual>
@@ -252,7 +240,7 @@ void ThreeViewBundleAdjuster::BuildCeresProblem() {
   problem_options.disable_all_safety_checks = true;
   problem_ = std::make_unique<ceres::Problem>(problem_options);
   const bool bearings = observations_.HasBearings();
-  ceres::LossFunction* loss = MakeLoss(options_.loss, options_.LossScale(observations_));
+  ceres::LossFunction* loss = internal::MakeLoss(options_.loss, options_.LossScale(observations_));
   for (std::size_t p = 0; p < points_.size(); ++p) {
     const int i = used_triplets_[p];
     double* point = points_[p].data();

@@ -18,6 +18,7 @@
 #include <string>
 #include <utility>
 
+#include "robust_loss.h"
 #include "trigrav/factors/angle_manifold.h"
 #include "trigrav/factors/reprojection_factors.h"
 #include "trigrav/initializers/gravity.h"
@@ -29,41 +30,28 @@ namespace {
 using Options = ThreeViewBundleAdjustmentOptions;
 constexpr double kDegToRad = M_PI / 180.0;
 
-// rho(s) and rho'(s) of Ceres' losses (ceres/loss_function.h, same formulas and guards). Huber and
-// Cauchy have rho'' <= 0, where Ceres' corrector (internal/ceres/corrector.cc) scales the residual
-// and its Jacobian by sqrt(rho'): the cost is 1/2 rho(|r|^2) and the normal equations those of
+// The options' loss (robust_loss.h: Ceres' own HuberLoss / CauchyLoss). Huber and Cauchy have
+// rho'' <= 0, where Ceres' corrector (internal/ceres/corrector.cc) scales the residual and its
+// Jacobian by sqrt(rho'): the cost is 1/2 rho(|r|^2) and the normal equations those of
 // sqrt(rho') r (section 13.2).
 class Loss {
  public:
-  Loss(Options::LossType type, double scale) : type_(type), a_(scale), b_(scale * scale) {}
+  Loss(Options::LossType type, double scale) : loss_(MakeLoss(type, scale)) {}
 
   // Adds 1/2 rho(s) to *cost and returns sqrt(rho'(s)).
   double Apply(double s, double* cost) const {
-    double rho = s, rho1 = 1.0;
-    switch (type_) {
-      case Options::LossType::kNone:
-        break;
-      case Options::LossType::kHuber:
-        if (s > b_) {
-          const double r = std::sqrt(s);
-          rho = 2.0 * a_ * r - b_;
-          rho1 = std::max(std::numeric_limits<double>::min(), a_ / r);
-        }
-        break;
-      case Options::LossType::kCauchy: {
-        const double sum = 1.0 + s * (1.0 / b_);
-        rho = b_ * std::log(sum);
-        rho1 = std::max(std::numeric_limits<double>::min(), 1.0 / sum);
-        break;
-      }
+    if (loss_ == nullptr) {
+      *cost += 0.5 * s;
+      return 1.0;
     }
-    *cost += 0.5 * rho;
-    return std::sqrt(rho1);
+    double rho[3];
+    loss_->Evaluate(s, rho);
+    *cost += 0.5 * rho[0];
+    return std::sqrt(rho[1]);
   }
 
  private:
-  Options::LossType type_;
-  double a_, b_;
+  std::unique_ptr<ceres::LossFunction> loss_;
 };
 
 PixelResidual MakeResidual(const ThreeViewObservations& o, int k, int i, PixelResidual*) {

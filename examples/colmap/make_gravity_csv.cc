@@ -85,12 +85,13 @@ std::vector<Eigen::Matrix3d> ReadCameraToWorldRotations(const std::string& path)
   return rotations;
 }
 
-// Every regular file under `folder`, as a path relative to it with '/' separators, sorted.
+// Every regular file under `folder` (symbolic links to files included, not resolved), as a path
+// relative to it with '/' separators, sorted.
 std::vector<std::string> ImageNames(const std::string& folder) {
   std::vector<std::string> names;
   for (const fs::directory_entry& entry : fs::recursive_directory_iterator(folder)) {
     if (entry.is_regular_file()) {
-      names.push_back(fs::relative(entry.path(), folder).generic_string());
+      names.push_back(entry.path().lexically_relative(folder).generic_string());
     }
   }
   std::sort(names.begin(), names.end());

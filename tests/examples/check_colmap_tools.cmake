@@ -17,6 +17,12 @@ macro(expect what)
     list(APPEND failures "${what}")
   endif()
 endmacro()
+# expect() with a regex that may hold spaces (expect's arguments are split on them).
+function(expect_match what text regex)
+  if(NOT text MATCHES "${regex}")
+    set(failures ${failures} "${what}" PARENT_SCOPE)
+  endif()
+endfunction()
 
 # Runs the command in ARGN; sets <name>_status, <name>_out, <name>_err.
 macro(run name)
@@ -39,21 +45,22 @@ run(exact ${MAKE_GRAVITY} --poses_path=${WORK_DIR}/poses.txt --image_path=${WORK
   --output_path=${WORK_DIR}/exact.csv)
 expect("make_gravity_csv exits 0" exact_status EQUAL 0)
 file(READ "${WORK_DIR}/exact.csv" exact_csv)
-expect("frame 0 (a.png) has gravity e_y" exact_csv MATCHES "\na\\.png,-?0,1,-?0\n")
-expect("frame 1 (b.png) has gravity e_x" exact_csv MATCHES "\nb\\.png,1,-?0,-?0\n")
-expect("frame 2 (sub/c.png) has gravity e_y" exact_csv MATCHES "\nsub/c\\.png,-?0,1,-?0\n")
+expect_match("frame 0 (a.png) has gravity e_y" "${exact_csv}" "\na\\.png,-?0,1,-?0\n")
+expect_match("frame 1 (b.png) has gravity e_x" "${exact_csv}" "\nb\\.png,1,-?0,-?0\n")
+expect_match("frame 2 (sub/c.png) has gravity e_y" "${exact_csv}" "\nsub/c\\.png,-?0,1,-?0\n")
 run(noisy ${MAKE_GRAVITY} --poses_path=${WORK_DIR}/poses.txt --image_path=${WORK_DIR}/images
   --output_path=${WORK_DIR}/noisy.csv --noise_deg=1 --seed=3)
 expect("make_gravity_csv --noise_deg=1 exits 0" noisy_status EQUAL 0)
 file(READ "${WORK_DIR}/noisy.csv" noisy_csv)
 expect("noise moves frame 0's gravity" NOT noisy_csv MATCHES "\na\\.png,-?0,1,-?0\n")
-expect("noisy rows for the three images"
-  noisy_csv MATCHES "\na\\.png,[-0-9.e]+,[-0-9.e]+,[-0-9.e]+\nb\\.png,.*\nsub/c\\.png,")
+expect_match("noisy rows for the three images" "${noisy_csv}"
+  "\na\\.png,[-0-9.e]+,[-0-9.e]+,[-0-9.e]+\nb\\.png,.*\nsub/c\\.png,")
 file(WRITE "${WORK_DIR}/images/d.png" "a fourth image")
 run(few_poses ${MAKE_GRAVITY} --poses_path=${WORK_DIR}/poses.txt --image_path=${WORK_DIR}/images
   --output_path=${WORK_DIR}/few.csv)
 expect("3 poses for 4 images: exit 1" few_poses_status EQUAL 1)
-expect("3 poses for 4 images: the message" few_poses_err MATCHES "error: .*has 3 poses for 4 images")
+expect_match("3 poses for 4 images: the message" "${few_poses_err}"
+  "error: .*has 3 poses for 4 images")
 expect("3 poses for 4 images: no CSV" NOT EXISTS "${WORK_DIR}/few.csv")
 
 # 2. gravity_bundle_adjuster.
@@ -74,8 +81,8 @@ foreach(rotation_model gravity_prior yaw_only)
   else()
     list(APPEND failures "${rotation_model}: no cost line")
   endif()
-  expect("${rotation_model}: 5 images, 150 points, 750 observations"
-    ${rotation_model}_out MATCHES "5 images, 150 points, 750 observations \\(0 skipped\\)")
+  expect_match("${rotation_model}: 5 images, 150 points, 750 observations"
+    "${${rotation_model}_out}" "5 images, 150 points, 750 observations \\(0 skipped\\)")
 endforeach()
 run(text ${ADJUSTER} --input_path=${WORK_DIR}/yaw_only --gravity_csv=${gravity}
   --output_path=${WORK_DIR}/text --output_format=text --covariance_csv=${WORK_DIR}/covariance.csv)
@@ -95,7 +102,8 @@ file(WRITE "${WORK_DIR}/gravity_missing.csv" "${missing_csv}\n")
 run(missing ${ADJUSTER} --input_path=${model} --gravity_csv=${WORK_DIR}/gravity_missing.csv
   --output_path=${WORK_DIR}/out_missing)
 expect("a gravity CSV missing an image: exit 1" missing_status EQUAL 1)
-expect("a gravity CSV missing an image: the image named" missing_err MATCHES "error: .*frame2\\.png")
+expect_match("a gravity CSV missing an image: the image named" "${missing_err}"
+  "error: no gravity for 1 of 5 images: frame2\\.png")
 expect("a gravity CSV missing an image: no output" NOT EXISTS "${WORK_DIR}/out_missing")
 
 file(READ "${gravity}" gravity_csv)
@@ -104,13 +112,15 @@ file(WRITE "${WORK_DIR}/gravity_nan.csv" "${nan_csv}")
 run(nan ${ADJUSTER} --input_path=${model} --gravity_csv=${WORK_DIR}/gravity_nan.csv
   --output_path=${WORK_DIR}/out_nan)
 expect("NaN gravity: exit 1" nan_status EQUAL 1)
-expect("NaN gravity: the file named" nan_err MATCHES "error: .*gravity_nan\\.csv")
+expect_match("NaN gravity: the file and line named" "${nan_err}"
+  "error: .*gravity_nan\\.csv:3: .*frame1\\.png")
 expect("NaN gravity: no output" NOT EXISTS "${WORK_DIR}/out_nan")
 
 run(no_model ${ADJUSTER} --input_path=${WORK_DIR}/no_such_model --gravity_csv=${gravity}
   --output_path=${WORK_DIR}/out_no_model)
 expect("a missing model folder: exit 2" no_model_status EQUAL 2)
-expect("a missing model folder: the message" no_model_err MATCHES "error: --input_path=.* is not a folder")
+expect_match("a missing model folder: the message" "${no_model_err}"
+  "error: --input_path=.* is not a folder")
 expect("a missing model folder: no output" NOT EXISTS "${WORK_DIR}/out_no_model")
 
 file(MAKE_DIRECTORY "${WORK_DIR}/empty_model")

@@ -30,6 +30,12 @@ macro(expect what)
     list(APPEND failures "${what}")
   endif()
 endmacro()
+# expect() with a regex that may hold spaces (expect's arguments are split on them).
+function(expect_match what text regex)
+  if(NOT text MATCHES "${regex}")
+    set(failures ${failures} "${what}" PARENT_SCOPE)
+  endif()
+endfunction()
 # Runs the command in ARGN; sets <name>_status, <name>_out, <name>_err; stops on a failure.
 macro(run name)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE ${name}_status OUTPUT_VARIABLE ${name}_out
@@ -58,8 +64,8 @@ run(make_gravity_csv ${MAKE_GRAVITY} --poses_path=${KITTI_DIR}/poses/00.txt
 run(triplet_initializer ${INITIALIZER} --database_path=${db} --gravity_csv=${WORK_DIR}/gravity.csv
   --output_csv=${WORK_DIR}/triplets.csv --output_model_path=${WORK_DIR}/seed)
 message(STATUS "${triplet_initializer_out}")
-expect("3 triplets, at least one trusted"
-  triplet_initializer_out MATCHES "3 triplets \\(consecutive\\): [0-9] estimated, [1-3] trusted")
+expect_match("3 triplets, at least one trusted" "${triplet_initializer_out}"
+  "3 triplets \\(consecutive\\): [0-9] estimated, [1-3] trusted")
 file(STRINGS "${WORK_DIR}/triplets.csv" rows REGEX "^0000")
 list(LENGTH rows num_rows)
 expect("3 rows in triplets.csv (${num_rows})" num_rows EQUAL 3)
@@ -73,7 +79,7 @@ run(mapper ${COLMAP} mapper --database_path ${db} --image_path ${WORK_DIR}/image
 run(model_analyzer ${COLMAP} model_analyzer --path ${WORK_DIR}/mapped)
 set(analysis "${model_analyzer_out}${model_analyzer_err}")
 message(STATUS "${analysis}")
-expect("COLMAP's mapper registers the 5 frames from the seed" analysis MATCHES
+expect_match("COLMAP's mapper registers the 5 frames from the seed" "${analysis}"
   "Registered images: 5\n")
 
 run(gravity_bundle_adjuster ${ADJUSTER} --input_path=${WORK_DIR}/mapped

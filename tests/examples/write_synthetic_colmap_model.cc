@@ -1,8 +1,8 @@
 // Writes a small synthetic COLMAP model with noisy poses and points, and its gravity CSV, for the
 // end-to-end test of gravity_bundle_adjuster (check_colmap_tools.cmake):
 //   write_synthetic_colmap_model <folder>
-// creates <folder>/model (binary: 5 images of one PINHOLE camera driving forward, 150 points seen in
-// every image, 0.5 px pixel noise, poses and points perturbed) and <folder>/gravity.csv (exact
+// creates <folder>/model (binary: 5 images of one PINHOLE camera driving forward, 150 points seen
+// in every image, 0.5 px pixel noise, poses and points perturbed) and <folder>/gravity.csv (exact
 // gravity: the world's +y axis seen from each camera).
 
 #include <Eigen/Geometry>
@@ -50,11 +50,10 @@ int main(int argc, char** argv) {
   std::vector<trigrav::CameraPose> truth(kNumImages);
   colmap::GravityByImageName gravity;
   for (int k = 0; k < kNumImages; ++k) {
-    const Eigen::Matrix3d R =
-        (Eigen::AngleAxisd(0.02 * k, Eigen::Vector3d::UnitY()) *
-         Eigen::AngleAxisd(0.01 * uniform(rng), Eigen::Vector3d::UnitX()) *
-         Eigen::AngleAxisd(0.01 * uniform(rng), Eigen::Vector3d::UnitZ()))
-            .toRotationMatrix();
+    const Eigen::Matrix3d R = (Eigen::AngleAxisd(0.02 * k, Eigen::Vector3d::UnitY()) *
+                               Eigen::AngleAxisd(0.01 * uniform(rng), Eigen::Vector3d::UnitX()) *
+                               Eigen::AngleAxisd(0.01 * uniform(rng), Eigen::Vector3d::UnitZ()))
+                                  .toRotationMatrix();
     const Eigen::Vector3d center(0.1 * k, 0.0, 1.0 * k);
     truth[k].R = R;
     truth[k].t = -R * center;
@@ -74,8 +73,8 @@ int main(int argc, char** argv) {
     for (int k = 0; k < kNumImages; ++k) {
       const Eigen::Vector3d in_cam = truth[k].Apply(point);
       const Eigen::Vector2d pixel = camera.camera.Project(in_cam);
-      visible = visible && in_cam.z() > 1.0 && pixel.x() > 0 && pixel.x() < 640 &&
-                pixel.y() > 0 && pixel.y() < 480;
+      visible = visible && in_cam.z() > 1.0 && pixel.x() > 0 && pixel.x() < 640 && pixel.y() > 0 &&
+                pixel.y() < 480;
       pixels.push_back(pixel + 0.5 * Eigen::Vector2d(normal(rng), normal(rng)));
     }
     if (!visible) continue;

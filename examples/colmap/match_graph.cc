@@ -10,19 +10,6 @@ namespace {
 
 using KeypointMatch = std::array<std::uint32_t, 2>;
 
-// Removes every match whose entry `side` occurs more than once; `matches` sorted by that entry.
-void DropAmbiguous(int side, std::vector<KeypointMatch>* matches) {
-  std::vector<KeypointMatch> kept;
-  kept.reserve(matches->size());
-  for (std::size_t i = 0; i < matches->size();) {
-    std::size_t end = i + 1;
-    while (end < matches->size() && (*matches)[end][side] == (*matches)[i][side]) ++end;
-    if (end == i + 1) kept.push_back((*matches)[i]);
-    i = end;
-  }
-  *matches = std::move(kept);
-}
-
 PairMatches OneToOne(std::vector<KeypointMatch> matches) {
   const auto by = [](int side) {
     return [side](const KeypointMatch& a, const KeypointMatch& b) {
@@ -31,13 +18,21 @@ PairMatches OneToOne(std::vector<KeypointMatch> matches) {
   };
   std::sort(matches.begin(), matches.end(), by(0));
   matches.erase(std::unique(matches.begin(), matches.end()), matches.end());
-  DropAmbiguous(0, &matches);
-  std::sort(matches.begin(), matches.end(), by(1));
-  DropAmbiguous(1, &matches);
+  // Keypoints in more than one match, on either side, counted over all matches of the pair.
+  std::array<std::map<std::uint32_t, int>, 2> count;
+  for (const KeypointMatch& match : matches) {
+    ++count[0][match[0]];
+    ++count[1][match[1]];
+  }
+  matches.erase(std::remove_if(matches.begin(), matches.end(),
+                               [&count](const KeypointMatch& match) {
+                                 return count[0][match[0]] > 1 || count[1][match[1]] > 1;
+                               }),
+                matches.end());
   PairMatches pair;
-  pair.by_second = matches;
-  std::sort(matches.begin(), matches.end(), by(0));
-  pair.by_first = std::move(matches);
+  pair.by_first = matches;
+  std::sort(matches.begin(), matches.end(), by(1));
+  pair.by_second = std::move(matches);
   return pair;
 }
 

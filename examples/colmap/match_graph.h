@@ -17,8 +17,9 @@ namespace trigrav::colmap_tools {
 
 using colmap::ImageId;
 
-// The one-to-one matches of one image pair: a keypoint matched more than once on either side (an
-// ambiguous match, which COLMAP's verification can leave) is dropped with all its matches.
+// The one-to-one matches of one image pair: a keypoint in more than one match of the pair, on
+// either side (an ambiguous match, which COLMAP's verification can leave), is dropped with all its
+// matches.
 struct PairMatches {
   // (keypoint of the pair's first image, keypoint of its second), sorted by the first; and the
   // same matches sorted by the second.
@@ -64,8 +65,8 @@ std::vector<std::array<ImageId, 3>> ConsecutiveTriplets(const std::vector<ImageI
 // The best-connected triplets, greedily: candidate triplets are those with an image matched to
 // both others; in decreasing order of their three-view track count (ThreeViewTracks), a triplet is
 // taken when it contains an image no taken triplet contains, until every image of a candidate is
-// in one or `max_triplets` (> 0) are taken. Each triplet lists its images in the order of
-// `images_by_name`.
+// in one or `max_triplets` (> 0) are taken; equal counts go to the smaller image ids. Each triplet
+// lists its images in the order of `images_by_name`.
 std::vector<std::array<ImageId, 3>> ConnectedTriplets(const MatchGraph& graph,
                                                       const std::vector<ImageId>& images_by_name,
                                                       int max_triplets);

@@ -5,8 +5,8 @@
 # 1. make_gravity_csv: a pose file of 3 frames and 3 images (one in a subfolder) give
 #    R_k^T e_y per image in sorted name order; noise moves the vectors; 3 poses for 4 images fail.
 # 2. gravity_bundle_adjuster on a synthetic model with perturbed poses
-#    (write_synthetic_colmap_model): both rotation models, binary and text output, the covariance CSV; the cost decreases; the
-#    written model reads back (the tool runs on it).
+#    (write_synthetic_colmap_model): both rotation models, binary and text output, the covariance
+#    CSV; the cost decreases; the written model reads back (the tool runs on it).
 # 3. Bad input: a gravity CSV missing an image, NaN gravity, a missing model folder: non-zero exit,
 #    a message naming the problem, no output folder.
 cmake_minimum_required(VERSION 3.21)

@@ -31,31 +31,49 @@ std::string Indexed(const char* field, std::size_t i) {
   return std::string(field) + "[" + std::to_string(i) + "]";
 }
 
-// The reference image's rotation in the gravity-prior model: R <- R Exp(a e_x + b e_z), rotations
-// about the aligned world's x and z axes, so that the rotation about gravity (the world's yaw, a
-// gauge freedom) stays fixed (derivations.md section 14.2). Quaternions [w x y z] of cam_from_W.
-struct TiltOnlyQuaternionFunctor {
+// The reference image's rotation in the gravity-prior model (derivations.md section 14.2): the
+// chart R = R_0 Exp(a e_x + b e_z) around its starting rotation R_0 (cam_from_W), i.e. rotations
+// about the aligned world's x and z axes only, so that its rotation about gravity (the world's yaw,
+// a gauge freedom) stays exactly that of R_0. Plus(q, delta) = q_0 Exp(Log(q_0^-1 q) + [d0, 0,
+// d1]); quaternions [w x y z].
+class TiltChartFunctor {
+ public:
+  explicit TiltChartFunctor(const Eigen::Vector4d& q0) : q0_(q0) {}
+
   template <typename T>
   bool Plus(const T* x, const T* delta, T* x_plus_delta) const {
-    const T angle_axis[3] = {delta[0], T(0), delta[1]};
-    T q_delta[4];
-    ceres::AngleAxisToQuaternion(angle_axis, q_delta);
-    ceres::QuaternionProduct(x, q_delta, x_plus_delta);
+    T v[3];
+    LogFromStart(x, v);
+    const T moved[3] = {v[0] + delta[0], v[1], v[2] + delta[1]};
+    T q_moved[4];
+    ceres::AngleAxisToQuaternion(moved, q_moved);
+    const T q0[4] = {T(q0_[0]), T(q0_[1]), T(q0_[2]), T(q0_[3])};
+    ceres::QuaternionProduct(q0, q_moved, x_plus_delta);
     return true;
   }
   template <typename T>
   bool Minus(const T* y, const T* x, T* y_minus_x) const {
-    const T x_inverse[4] = {x[0], -x[1], -x[2], -x[3]};
-    T q_delta[4];
-    ceres::QuaternionProduct(x_inverse, y, q_delta);
-    T angle_axis[3];
-    ceres::QuaternionToAngleAxis(q_delta, angle_axis);
-    y_minus_x[0] = angle_axis[0];
-    y_minus_x[1] = angle_axis[2];
+    T v_y[3], v_x[3];
+    LogFromStart(y, v_y);
+    LogFromStart(x, v_x);
+    y_minus_x[0] = v_y[0] - v_x[0];
+    y_minus_x[1] = v_y[2] - v_x[2];
     return true;
   }
+
+ private:
+  // Log(q_0^-1 q) as an angle-axis vector.
+  template <typename T>
+  void LogFromStart(const T* q, T* v) const {
+    const T q0_inverse[4] = {T(q0_[0]), T(-q0_[1]), T(-q0_[2]), T(-q0_[3])};
+    T q_delta[4];
+    ceres::QuaternionProduct(q0_inverse, q, q_delta);
+    ceres::QuaternionToAngleAxis(q_delta, v);
+  }
+
+  Eigen::Vector4d q0_;
 };
-using TiltOnlyQuaternionManifold = ceres::AutoDiffManifold<TiltOnlyQuaternionFunctor, 4, 2>;
+using TiltChartManifold = ceres::AutoDiffManifold<TiltChartFunctor, 4, 2>;
 
 bool IsRotation(const Eigen::Matrix3d& r) {
   return (r.transpose() * r - Eigen::Matrix3d::Identity()).norm() < 1e-6 && r.determinant() > 0.0;
@@ -223,26 +241,29 @@ void NViewBundleAdjuster::Build() {
     return;
   }
   gravity_in_world_ = gravity_sum.normalized();
-  world_aligned_from_world_ = GravityAlignmentFromGravity(gravity_in_world_);
-  const Eigen::Matrix3d& w_from_world = world_aligned_from_world_;
-
+  // The parameters in W = w_from_world * world (model's form), and the rotations they hold.
   alignments_.resize(num_images);
   yaws_.assign(num_images, 0.0);
   quaternions_.resize(num_images);
   centers_.resize(num_images);
-  std::vector<Eigen::Matrix3d> rotations(num_images);  // cam_from_W in the model's form
-  for (int k = 0; k < num_images; ++k) {
-    const NViewImage& image = input_.images[k];
-    const Eigen::Matrix3d cam_from_w = image.cam_from_world.R * w_from_world.transpose();
-    alignments_[k] = GravityAlignmentFromGravity(image.gravity_in_cam);
-    yaws_[k] = internal::BestFitYaw(alignments_[k] * cam_from_w);
-    const Eigen::Quaterniond q = Eigen::Quaterniond(cam_from_w).normalized();
-    quaternions_[k] = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
-    centers_[k] = w_from_world * image.cam_from_world.Center();
-    rotations[k] = ModelRotation(yaw_only, alignments_[k], yaws_[k], quaternions_[k]);
-  }
   points_.resize(num_points);
-  for (int p = 0; p < num_points; ++p) points_[p] = w_from_world * input_.points_in_world[p];
+  std::vector<Eigen::Matrix3d> rotations(num_images);  // cam_from_W
+  auto set_parameters = [&](const Eigen::Matrix3d& w_from_world) {
+    world_aligned_from_world_ = w_from_world;
+    for (int k = 0; k < num_images; ++k) {
+      const NViewImage& image = input_.images[k];
+      const Eigen::Matrix3d cam_from_w = image.cam_from_world.R * w_from_world.transpose();
+      alignments_[k] = GravityAlignmentFromGravity(image.gravity_in_cam);
+      yaws_[k] = internal::BestFitYaw(alignments_[k] * cam_from_w);
+      const Eigen::Quaterniond q = Eigen::Quaterniond(cam_from_w).normalized();
+      quaternions_[k] = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+      centers_[k] = w_from_world * image.cam_from_world.Center();
+      rotations[k] = ModelRotation(yaw_only, alignments_[k], yaws_[k], quaternions_[k]);
+    }
+    for (int p = 0; p < num_points; ++p) points_[p] = w_from_world * input_.points_in_world[p];
+  };
+  // First any gravity-aligned frame; its yaw is set below, once the scale image is known.
+  set_parameters(GravityAlignmentFromGravity(gravity_in_world_));
 
   // Observations of points in front of their camera; points with >= 2 of them.
   std::vector<char> in_front(input_.observations.size(), 0);
@@ -289,9 +310,14 @@ void NViewBundleAdjuster::Build() {
     message_ = "the scale image has no usable observation";
     return;
   }
+  // W's yaw: the horizontal part of the baseline C_scale - C_reference along +z, so that W, and the
+  // coordinate the gauge fixes, follow the reconstruction and not the caller's world axes.
+  const Eigen::Vector3d first_baseline = centers_[scale_image_] - centers_[reference];
+  const double heading = std::atan2(first_baseline.x(), first_baseline.z());
+  set_parameters(RotationAboutY(-heading) * world_aligned_from_world_);
   const Eigen::Vector3d baseline = centers_[scale_image_] - centers_[reference];
   int scale_axis = 0;
-  baseline.cwiseAbs().maxCoeff(&scale_axis);
+  baseline.cwiseAbs().maxCoeff(&scale_axis);  // y or z
   double scene_extent = 0.0;
   for (const Eigen::Vector3d& c : centers_) {
     scene_extent = std::max(scene_extent, (c - centers_[reference]).norm());
@@ -305,6 +331,8 @@ void NViewBundleAdjuster::Build() {
   ceres::Problem::Options problem_options;
   problem_options.disable_all_safety_checks = true;
   problem_ = std::make_unique<ceres::Problem>(problem_options);
+  observation_residuals_.clear();
+  prior_residuals_.clear();
   ceres::LossFunction* loss = internal::MakeLoss(options_.loss, options_.loss_scale_px);
   const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();  // W is gravity-aligned: A_W = I
   for (const int i : used_observations_) {
@@ -314,8 +342,8 @@ void NViewBundleAdjuster::Build() {
     ceres::CostFunction* cost = yaw_only ? YawOnlyReprojectionError<PixelResidual>::Create(
                                                residual, alignments_[k], identity)
                                          : ReprojectionError<PixelResidual>::Create(residual);
-    problem_->AddResidualBlock(cost, loss, RotationBlock(k), centers_[k].data(),
-                               points_[o.point_index].data());
+    observation_residuals_.push_back(problem_->AddResidualBlock(
+        cost, loss, RotationBlock(k), centers_[k].data(), points_[o.point_index].data()));
   }
   const double gravity_weight =
       std::pow(options_.pixel_sigma_px / (options_.gravity_sigma_deg * kDegToRad), 2);
@@ -325,14 +353,14 @@ void NViewBundleAdjuster::Build() {
       problem_->SetManifold(&yaws_[k], CreateYawManifold());
     } else {
       // Pixel residuals and the prior's radians whitened alike: weight (sigma_px / sigma_g)^2.
-      problem_->AddResidualBlock(
+      prior_residuals_.push_back(problem_->AddResidualBlock(
           GravityPriorError::Create(Eigen::Vector3d::UnitY(), input_.images[k].gravity_in_cam),
           new ceres::ScaledLoss(nullptr, gravity_weight, ceres::TAKE_OWNERSHIP),
-          quaternions_[k].data());
+          quaternions_[k].data()));
       problem_->SetManifold(quaternions_[k].data(),
-                            k == reference
-                                ? static_cast<ceres::Manifold*>(new TiltOnlyQuaternionManifold)
-                                : new ceres::QuaternionManifold);
+                            k == reference ? static_cast<ceres::Manifold*>(new TiltChartManifold(
+                                                 new TiltChartFunctor(quaternions_[k])))
+                                           : new ceres::QuaternionManifold);
     }
   }
   if (yaw_only) problem_->SetParameterBlockConstant(&yaws_[reference]);

@@ -8,35 +8,34 @@
 // COLMAP's camera models; the intrinsics are held constant. No COLMAP type appears here
 // (trigrav::colmap converts).
 //
-// Frames (derivations.md section 14): the caller's world frame is arbitrary (e.g. COLMAP's). The
-// adjuster estimates the world's gravity direction g_w from the images, g_w ~ mean_k R_k^T g_k /
-// |g_k| (R_k the rotation of cam_from_world), refines in the gravity-aligned world W = A_w * world
-// (A_w takes g_w onto +y, GravityAlignmentFromGravity) and maps the result back by A_w^T: the
-// output is in the caller's world frame, whose axes do not move; only the images' poses and the
-// points do.
+// Frames (derivations.md section 14.1): the caller's world frame is arbitrary (e.g. COLMAP's). The
+// adjuster estimates the world's gravity direction from the images,
+// g_w = normalised sum_k R_k^T g_k / |g_k| (R_k the rotation of cam_from_world), and refines in a
+// gravity-aligned frame W = world_aligned_from_world() * world: +y along g_w, and the horizontal
+// part of the baseline from the reference image to the scale image along +z (so W follows the
+// reconstruction, not the caller's axes). The result is mapped back by W^T: it is in the caller's
+// world frame, whose axes do not move; only the images' poses and the points do (a rotated copy of
+// the input gives the rotated result).
 //
 // Rotation models (ThreeViewBundleAdjustmentOptions::RotationModel, the same two as three views):
-//  - kYawOnly: R_k = A_k^T R_y(yaw_k) A_w, with A_k the alignment of image k's measured gravity:
+//  - kYawOnly: R_k = A_k^T R_y(yaw_k) W, with A_k the alignment of image k's measured gravity:
 //  every
-//    image's pitch and roll are exactly those of its gravity (R_k g_w = g_k / |g_k| after the
-//    call), one yaw per image (YawManifold). The initial yaw is the best-fitting yaw of A_k R_k
-//    A_w^T.
-//  - kGravityPrior: R_k free (quaternion cam_from_world [w x y z], ceres::QuaternionManifold) with
-//  a
+//    image's pitch and roll are exactly those of its gravity (R_k g_w = g_k / |g_k| after the call,
+//    for every image), one yaw per image (YawManifold), started at the best-fitting yaw.
+//  - kGravityPrior: R_k free (quaternion cam_from_W [w x y z], ceres::QuaternionManifold) with a
 //    GravityPriorError(e_y, g_k) per image, weighted by (pixel_sigma_px / gravity_sigma_rad)^2.
 //
-// Gauge (7 dof of a similarity; derivations.md section 14.2):
-//  - kYawOnly: gravity fixes the world's tilt, leaving 4 dof (yaw about gravity, translation) +
-//  scale.
-//    The reference image's yaw and centre are constant; the scale image's centre keeps one
-//    coordinate (ceres::SubsetManifold), the world axis along which it lies farthest from the
-//    reference.
-//  - kGravityPrior: the priors fix the tilt too (the residuals change if the whole reconstruction
-//    tilts), so the same 5 dof are fixed, not 7: the reference image's centre is constant and its
-//    rotation moves only by R <- R Exp(a e_x + b e_z) (rotations about the aligned world's x and z
-//    axes, a 2-dof manifold), so its pitch and roll stay free to follow all images' gravity; the
-//    scale as for kYawOnly. Fixing its whole rotation would tie the reconstruction's tilt to one
-//    image's gravity measurement.
+// Gauge (derivations.md section 14.2): both models leave 5 dof (a rotation about gravity, a
+// translation, a scale), since gravity fixes the tilt (exactly for kYawOnly, through the priors for
+// kGravityPrior).
+//  - The reference image's centre is constant; its yaw is constant (kYawOnly), or its rotation
+//  lives
+//    on the chart R_0 Exp(a e_x + b e_z) around its start R_0 (kGravityPrior: rotations about W's x
+//    and z axes only, so its pitch and roll follow all images' gravity while its rotation about
+//    gravity stays exactly that of R_0; fixing its whole rotation would tie the reconstruction's
+//    tilt to one image's IMU reading).
+//  - The scale image's centre keeps one coordinate in W (ceres::SubsetManifold): y or z, whichever
+//    component of its baseline to the reference is larger.
 //
 // Usage:
 //   NViewReconstruction refined;
@@ -119,7 +118,8 @@ struct NViewBundleAdjustmentOptions {
   // Pixel noise assumed by the gravity prior's weight and by the covariance's scale.
   double pixel_sigma_px = 1.0;
   double gravity_sigma_deg = 0.1;  // IMU angular sigma (kGravityPrior)
-  // Fill NViewBundleAdjustmentSummary::covariances (ceres::Covariance on the camera blocks).
+  // Fill NViewBundleAdjustmentSummary::covariances (derivations.md section 14.3: the points
+  // eliminated by blocks, the dense reduced camera matrix inverted by Cholesky, O((4 or 6 N)^3)).
   bool compute_covariance = false;
 
   int max_num_iterations = 100;
@@ -152,12 +152,15 @@ struct NViewBundleAdjustmentSummary {
   // Per image: RMS of its observations' pixel residual norms at the returned solution (NaN for an
   // image without observations in the problem).
   std::vector<double> residual_rms_px;
-  // Per image, when options.compute_covariance and success: the covariance of
+  // Per image, when options.compute_covariance and success (empty, with the reason in message, if
+  // the reduced camera matrix is not positive definite): the Gauss-Newton covariance of
   //   kYawOnly:      [yaw (rad), C_world (3)]                                  4 x 4
   //   kGravityPrior: [omega (rad, R <- Exp(omega) R, camera frame), C_world]   6 x 6
-  // scaled by pixel_sigma_px^2. Constant (gauge-fixed) parameters have zero rows and columns: the
-  // reference image's yaw and centre (kYawOnly), its centre and the rotation about gravity
-  // (kGravityPrior: rank 2 in omega), the scale image's fixed centre coordinate, constant images.
+  // scaled by pixel_sigma_px^2, from the problem's own residuals (not factors a caller added).
+  // Constant (gauge-fixed) parameters have zero rows and columns: the reference image's yaw and
+  // centre (kYawOnly), its centre and its rotation about gravity (kGravityPrior: omega of rank 2),
+  // the scale image's fixed centre coordinate (a null direction of its C block), constant images
+  // and images without observations.
   std::vector<Eigen::MatrixXd> covariances;
   double solve_time_s = 0.0;
   double covariance_time_s = 0.0;
@@ -197,7 +200,7 @@ class NViewBundleAdjuster {
 
   // The problem and its parameter blocks, all in the gravity-aligned world W (x_W =
   // world_aligned_from_world() * x_world), for a caller adding factors (valid when built()):
-  //  - RotationBlock(k): kYawOnly: yaw_k (1, YawManifold; R_k = A_k^T R_y(yaw_k) in W);
+  //  - RotationBlock(k): kYawOnly: yaw_k (1, YawManifold; cam_from_W = A_k^T R_y(yaw_k));
   //    kGravityPrior: cam_from_W as a quaternion [w x y z] (4).
   //  - CenterBlock(k): the centre of image k in W (3).
   //  - PointBlock(p): point p in W (3); nullptr for a point left out of the problem.
@@ -216,7 +219,8 @@ class NViewBundleAdjuster {
  private:
   void Build();
   std::vector<double> ResidualRmsPx() const;
-  // Fills summary->covariances; false with a note in summary->message if ceres::Covariance fails.
+  // Fills summary->covariances; false with a note in summary->message if the reduced camera
+  // matrix is not positive definite.
   bool ComputeCovariances(NViewBundleAdjustmentSummary* summary);
 
   const NViewReconstruction& input_;
@@ -237,6 +241,9 @@ class NViewBundleAdjuster {
   std::vector<Eigen::Vector3d> points_;  // in W
   std::vector<char> point_used_;         // point in the problem
   std::vector<int> used_observations_;   // indices into input_.observations
+  // Residual blocks of the used observations (same order) and of the gravity priors.
+  std::vector<ceres::ResidualBlockId> observation_residuals_;
+  std::vector<ceres::ResidualBlockId> prior_residuals_;
 };
 
 // One call: builds an NViewBundleAdjuster on `input`, solves, and writes the refined reconstruction

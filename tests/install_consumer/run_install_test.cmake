@@ -30,6 +30,9 @@ run(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build
     -DCMAKE_BUILD_RPATH=${WORK_DIR}/prefix/lib)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/consumer)
+if(EXISTS ${WORK_DIR}/build/consumer_colmap)
+  run(${WORK_DIR}/build/consumer_colmap ${WORK_DIR})
+endif()
 if(PYTHON)
   # The module and its stub in the prefix's site folder: imported from there, a call run.
   set(site ${WORK_DIR}/prefix/${PYTHON_INSTALL_DIR})

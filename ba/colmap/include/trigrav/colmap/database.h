@@ -60,7 +60,8 @@ class Database {
   std::unique_ptr<Impl> impl_;
 };
 
-// COLMAP's pair id of two images, and back (image_id1 < image_id2).
+// COLMAP's pair id of two images, and back (image_id1 < image_id2; PairId orders its arguments,
+// as COLMAP's Database::ImagePairToPairId).
 std::uint64_t PairId(ImageId image_id1, ImageId image_id2);
 void ImagesOfPairId(std::uint64_t pair_id, ImageId* image_id1, ImageId* image_id2);
 

@@ -64,7 +64,9 @@ struct Reconstruction {
 
   // Throws std::invalid_argument naming the first inconsistency: an image of an unknown camera, a
   // track element of an unknown image or keypoint, a keypoint whose point3D id disagrees with the
-  // track that names it, sizes of points2D and point3D_ids that differ, non-finite poses or points.
+  // track that names it, sizes of points2D and point3D_ids that differ, non-finite poses or points,
+  // a cam_from_world.R that is not a rotation (to 1e-9), a map key that differs from the record's
+  // id, an invalid camera, an empty image name or one with a line break or NUL.
   void Check() const;
 };
 

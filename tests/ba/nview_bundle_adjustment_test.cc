@@ -122,16 +122,18 @@ TEST_P(NViewAccuracyTest, ReachesTheTruePoseOracle) {
   }
 }
 
+std::string AccuracyCaseName(const ::testing::TestParamInfo<AccuracyCase>& info) {
+  return std::string(info.param.model == RotationModel::kYawOnly ? "YawOnly" : "GravityPrior") +
+         (info.param.gravity_noise_deg > 0.0 ? "NoisyGravity" : "ExactGravity");
+}
+
 INSTANTIATE_TEST_SUITE_P(ModelsAndGravity,
                          NViewAccuracyTest,
                          ::testing::Values(AccuracyCase{RotationModel::kYawOnly, 0.0},
                                            AccuracyCase{RotationModel::kYawOnly, 0.1},
                                            AccuracyCase{RotationModel::kGravityPrior, 0.0},
                                            AccuracyCase{RotationModel::kGravityPrior, 0.1}),
-                         [](const ::testing::TestParamInfo<AccuracyCase>& info) {
-  return std::string(info.param.model == RotationModel::kYawOnly ? "YawOnly" : "GravityPrior") +
-         (info.param.gravity_noise_deg > 0.0 ? "NoisyGravity" : "ExactGravity");
-                         }));
+                         AccuracyCaseName);
 
 TEST(NViewBundleAdjustmentTest, YawOnlyKeepsEveryImagesGravityAndTheGauge) {
   NViewSceneOptions scene_options;

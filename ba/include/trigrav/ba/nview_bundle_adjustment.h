@@ -19,9 +19,8 @@
 //
 // Rotation models (ThreeViewBundleAdjustmentOptions::RotationModel, the same two as three views):
 //  - kYawOnly: R_k = A_k^T R_y(yaw_k) W, with A_k the alignment of image k's measured gravity:
-//  every
-//    image's pitch and roll are exactly those of its gravity (R_k g_w = g_k / |g_k| after the call,
-//    for every image), one yaw per image (YawManifold), started at the best-fitting yaw.
+//    every image's pitch and roll are exactly those of its gravity (R_k g_w = g_k / |g_k| after
+//    the call, for every image), one yaw per image (YawManifold), started at the best-fitting yaw.
 //  - kGravityPrior: R_k free (quaternion cam_from_W [w x y z], ceres::QuaternionManifold) with a
 //    GravityPriorError(e_y, g_k) per image, weighted by (pixel_sigma_px / gravity_sigma_rad)^2.
 //
@@ -29,11 +28,10 @@
 // translation, a scale), since gravity fixes the tilt (exactly for kYawOnly, through the priors for
 // kGravityPrior).
 //  - The reference image's centre is constant; its yaw is constant (kYawOnly), or its rotation
-//  lives
-//    on the chart R_0 Exp(a e_x + b e_z) around its start R_0 (kGravityPrior: rotations about W's x
-//    and z axes only, so its pitch and roll follow all images' gravity while its rotation about
-//    gravity stays exactly that of R_0; fixing its whole rotation would tie the reconstruction's
-//    tilt to one image's IMU reading).
+//    lives on the chart R_0 Exp(a e_x + b e_z) around its start R_0 (kGravityPrior: rotations about
+//    W's x and z axes only, so its pitch and roll follow all images' gravity while its rotation
+//    about gravity stays exactly that of R_0; fixing its whole rotation would tie the
+//    reconstruction's tilt to one image's IMU reading).
 //  - The scale image's centre keeps one coordinate in W (ceres::SubsetManifold): y or z, whichever
 //    component of its baseline to the reference is larger.
 //

@@ -4,6 +4,7 @@
 
 #include "trigrav/ba/nview_bundle_adjustment.h"
 
+#include <ceres/covariance.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -122,12 +123,18 @@ TEST_P(NViewAccuracyTest, ReachesTheTruePoseOracle) {
   }
 }
 
+std::string AccuracyCaseName(const ::testing::TestParamInfo<AccuracyCase>& info) {
+  return std::string(info.param.model == RotationModel::kYawOnly ? "YawOnly" : "GravityPrior") +
+         (info.param.gravity_noise_deg > 0.0 ? "NoisyGravity" : "ExactGravity");
+}
+
 INSTANTIATE_TEST_SUITE_P(ModelsAndGravity,
                          NViewAccuracyTest,
                          ::testing::Values(AccuracyCase{RotationModel::kYawOnly, 0.0},
                                            AccuracyCase{RotationModel::kYawOnly, 0.1},
                                            AccuracyCase{RotationModel::kGravityPrior, 0.0},
-                                           AccuracyCase{RotationModel::kGravityPrior, 0.1}));
+                                           AccuracyCase{RotationModel::kGravityPrior, 0.1}),
+                         AccuracyCaseName);
 
 TEST(NViewBundleAdjustmentTest, YawOnlyKeepsEveryImagesGravityAndTheGauge) {
   NViewSceneOptions scene_options;
@@ -339,6 +346,51 @@ TEST(NViewBundleAdjustmentTest, CovarianceMatchesTheEmpiricalSpread) {
                 empirical_center / predicted_center, empirical_rotation / predicted_rotation);
     EXPECT_GT(empirical_rotation, 0.5 * predicted_rotation);
     EXPECT_LT(empirical_rotation, 1.6 * predicted_rotation);
+  }
+}
+
+// The Schur-complement covariance equals ceres::Covariance (DENSE_SVD) on the adjuster's problem,
+// for an image that is neither the reference nor the scale image.
+TEST(NViewBundleAdjustmentTest, CovarianceMatchesCeresCovariance) {
+  for (const RotationModel model : {RotationModel::kYawOnly, RotationModel::kGravityPrior}) {
+    NViewSceneOptions scene_options;
+    scene_options.num_images = 6;
+    scene_options.num_points = 120;
+    scene_options.gravity_noise_deg = 0.1;
+    const NViewReconstruction truth = MakeNViewScene(scene_options, 51).truth;
+    NViewBundleAdjustmentOptions options = Options(model);
+    options.compute_covariance = true;
+    options.pixel_sigma_px = 0.5;
+    NViewBundleAdjuster adjuster(truth, {}, options);
+    const NViewBundleAdjustmentSummary summary = adjuster.Solve();
+    ASSERT_TRUE(summary.success) << summary.message;
+    ASSERT_EQ(summary.covariances.size(), truth.images.size());
+    const int k = 2;
+    double* rotation = adjuster.RotationBlock(k);
+    double* center = adjuster.CenterBlock(k);
+    ceres::Covariance::Options covariance_options;
+    covariance_options.algorithm_type = ceres::DENSE_SVD;
+    ceres::Covariance covariance(covariance_options);
+    ASSERT_TRUE(covariance.Compute({{rotation, rotation}, {rotation, center}, {center, center}},
+                                   adjuster.problem()));
+    const int r = model == RotationModel::kYawOnly ? 1 : 3;
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rr(r, r), rc(r, 3);
+    Eigen::Matrix<double, 3, 3, Eigen::RowMajor> cc;
+    covariance.GetCovarianceBlockInTangentSpace(rotation, rotation, rr.data());
+    covariance.GetCovarianceBlockInTangentSpace(rotation, center, rc.data());
+    covariance.GetCovarianceBlockInTangentSpace(center, center, cc.data());
+    // Tangent -> output: yaw as is, omega = 2 delta (QuaternionManifold); C_world = W^T C_W.
+    const double rotation_scale = model == RotationModel::kYawOnly ? 1.0 : 2.0;
+    const Eigen::Matrix3d w_transpose = adjuster.world_aligned_from_world().transpose();
+    Eigen::MatrixXd expected(r + 3, r + 3);
+    expected.topLeftCorner(r, r) = rotation_scale * rotation_scale * rr;
+    expected.topRightCorner(r, 3) = rotation_scale * rc * w_transpose.transpose();
+    expected.bottomLeftCorner(3, r) = expected.topRightCorner(r, 3).transpose();
+    expected.bottomRightCorner(3, 3) = w_transpose * cc * w_transpose.transpose();
+    expected *= options.pixel_sigma_px * options.pixel_sigma_px;
+    EXPECT_LT((summary.covariances[k] - expected).norm(), 1e-6 * expected.norm())
+        << summary.covariances[k] << "\n\n"
+        << expected;
   }
 }
 

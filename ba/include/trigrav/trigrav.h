@@ -32,8 +32,9 @@
 #include "trigrav/factors/angle_manifold.h"
 #include "trigrav/factors/reprojection_factors.h"
 
-// trigrav::ba: bundle adjustment, refine-only and initialise-then-refine.
+// trigrav::ba: bundle adjustment (three views, N views), refine-only and initialise-then-refine.
 #include "trigrav/ba/initialize_and_refine.h"
+#include "trigrav/ba/nview_bundle_adjustment.h"
 #include "trigrav/ba/refine_three_view_pose.h"
 #include "trigrav/ba/three_view_bundle_adjustment.h"
 #include "trigrav/ba/three_view_covariance.h"

@@ -61,20 +61,25 @@ class Stages:
     def path(self, *names):
         return os.path.join(self.work, *names)
 
-    def cached(self, name, outputs):
+    def cached(self, name, command, outputs):
+        """The record of a stage run before with the same command (or a front end made with GNU
+        time) whose outputs exist, else None."""
         record_path = self.path(name + ".json")
         if self.fresh or self.ran or not os.path.isfile(record_path):
             return None
         if not all(os.path.exists(self.path(o)) for o in outputs):
             return None
         with open(record_path) as f:
-            return json.load(f)
+            record = json.load(f)
+        return record if record.get("gnu_time") or record["command"] == command else None
 
     def run(self, name, command, outputs, may_fail=False, nice=False, make_dirs=(), clean=True):
         """Runs `command` unless cached; returns its record. Removes the outputs first when clean
         (not for a stage that adds to its input, as the matcher to the database). A non-zero exit
         stops the experiment unless may_fail (the mapper failing to initialise is a result)."""
-        record = self.cached(name, outputs)
+        if nice:
+            command = ["nice", "-n", "5"] + command
+        record = self.cached(name, command, outputs)
         if record is not None:
             print("[%s] %-28s cached (%.1f s)" % (self.seq, name, record["seconds"]), flush=True)
             return record
@@ -88,8 +93,6 @@ class Stages:
         for d in make_dirs:
             os.makedirs(self.path(d), exist_ok=True)
         self.ran = True
-        if nice:
-            command = ["nice", "-n", "5"] + command
         log_path = self.path(name + ".log")
         start = time.monotonic()
         with open(log_path, "w") as log:
@@ -136,6 +139,7 @@ def adopt_gnu_time_front_end(stages, source):
                                 stages.path("database.db" + suffix))
     for name in ("extract", "match"):
         record = {"command": "GNU time -v, from " + os.path.join(source, name + ".time"),
+                  "gnu_time": True,
                   "seconds": gnu_time_seconds(os.path.join(source, name + ".time")),
                   "returncode": 0}
         with open(stages.path(name + ".json"), "w") as f:
@@ -197,11 +201,11 @@ def front_end(args, stages, images):
     return times
 
 
-def mapper(stages, name, images, extra, output, make_dirs=()):
+def mapper(stages, name, images, extra, output):
     command = ["colmap", "mapper", "--database_path", stages.path("database.db"),
                "--image_path", images, "--output_path", stages.path(output)] + extra
     return stages.run(name, command, [output], may_fail=True, nice=True,
-                      make_dirs=[output] + list(make_dirs))
+                      make_dirs=[output])
 
 
 def variant_row(stages, label, output, seconds, frames, ground_truth):
@@ -222,6 +226,9 @@ def run_sequence(args, seq, tools):
     images = image_folder(args, stages)
     times = front_end(args, stages, images)
     poses_path = os.path.join(args.kitti_path, "poses", seq + ".txt")
+    # The gravity CSVs cover every image of the sequence's own folder (same names, frame k = k-th
+    # file): a superset of the images, and no links, whose targets make_gravity_csv would name.
+    kitti_images = os.path.join(args.kitti_path, "sequences", seq, "image_0")
     ground_truth = evaluation.read_kitti_poses(poses_path)
     rows = []
 
@@ -242,7 +249,7 @@ def run_sequence(args, seq, tools):
         for tag, noise, _ in GRAVITY:
             stages.run("gravity_" + tag,
                        [tools["make_gravity_csv"], "--poses_path", poses_path, "--image_path",
-                        images, "--output_path", stages.path("gravity_%s.csv" % tag),
+                        kitti_images, "--output_path", stages.path("gravity_%s.csv" % tag),
                         "--noise_deg", str(noise), "--seed", str(NOISE_SEED)],
                        ["gravity_%s.csv" % tag])
 
@@ -253,7 +260,7 @@ def run_sequence(args, seq, tools):
              stages.path("database.db"), "--gravity_csv", stages.path("gravity_exact.csv"),
              "--output_csv", stages.path("triplets.csv"), "--output_model_path",
              stages.path("triplet_model"), "--triplets", "consecutive"],
-            ["triplets.csv", "triplet_model"], nice=True, make_dirs=["triplet_model"])
+            ["triplets.csv", "triplet_model"], nice=True)
         record = mapper(stages, "mapper_triplet", images,
                         ["--input_path", stages.path("triplet_model")], "sparse_triplet")
         add("trigrav triplet + COLMAP", "sparse_triplet",
@@ -270,7 +277,7 @@ def run_sequence(args, seq, tools):
                                "--rotation_model", rotation_model]
                     if rotation_model == "gravity_prior":
                         command += ["--gravity_sigma_deg", str(sigma)]
-                    record = stages.run(name, command, [name], nice=True, make_dirs=[name])
+                    record = stages.run(name, command, [name], nice=True)
                     gravity = "exact" if tag == "exact" else "%g deg" % NOISE_DEG
                     prior = " (sigma %g deg)" % sigma if rotation_model == "gravity_prior" else ""
                     add("%s + BA %s, %s gravity%s" % (base, rotation_model, gravity, prior), name,

@@ -12,6 +12,8 @@ packages=(
   python3-opencv         # the Python KITTI example (SIFT); the module never uses it
   libopencv-dev          # KITTI tool only (SIFT features); the library never links it
   libopengv-dev          # optional peer rows in the comparisons; the library never links it
+  libsqlite3-dev         # trigrav::colmap reads COLMAP databases
+  colmap                 # CLI for the real-COLMAP tests and the experiment; the library never links it
   clang libclang-rt-14-dev  # libFuzzer and the sanitizer runtime for the hardening step
   clang-format           # the formatting check of the test suite (clang-format-14)
 )

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "best_fit_yaw.h"
 #include "robust_loss.h"
 #include "three_view_lm_solver.h"
 #include "trigrav/factors/angle_manifold.h"
@@ -32,9 +33,6 @@ ceres::CostFunction* MakeFactor(bool yaw_only,
              ? YawOnlyReprojectionError<Residual>::Create(residual, alignment_cam, alignment_ref)
              : ReprojectionError<Residual>::Create(residual);
 }
-
-// Best-fitting yaw of a rotation that should be R_y(yaw).
-double YawOf(const Eigen::Matrix3d& m) { return std::atan2(m(0, 2) - m(2, 0), m(0, 0) + m(2, 2)); }
 
 }  // namespace
 
@@ -178,7 +176,7 @@ bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial,
     const Eigen::Vector3d c = poses[j]->Center() / scale;
     for (int i = 0; i < 3; ++i) center_[j][i] = c[i];
     if (yaw_only) {
-      yaw_[j] = YawOf(alignment_[j + 1] * poses[j]->R * alignment_[0].transpose());
+      yaw_[j] = internal::BestFitYaw(alignment_[j + 1] * poses[j]->R * alignment_[0].transpose());
     } else {
       Eigen::Quaterniond q(poses[j]->R);
       q.normalize();

@@ -1,0 +1,253 @@
+#ifndef TRIGRAV_BA_NVIEW_BUNDLE_ADJUSTMENT_H_
+#define TRIGRAV_BA_NVIEW_BUNDLE_ADJUSTMENT_H_
+
+// Gravity-aware bundle adjustment of a whole reconstruction (any number of images and points),
+// split like COLMAP's estimators/bundle_adjustment.h into a Config (what is constant, how the gauge
+// is fixed), Options (rotation model, loss, solver) and an adjuster that owns the ceres::Problem.
+// It uses the factors of the three-view refinement (trigrav/factors/reprojection_factors.h) with
+// COLMAP's camera models; the intrinsics are held constant. No COLMAP type appears here
+// (trigrav::colmap converts).
+//
+// Frames (derivations.md section 14): the caller's world frame is arbitrary (e.g. COLMAP's). The
+// adjuster estimates the world's gravity direction g_w from the images, g_w ~ mean_k R_k^T g_k /
+// |g_k| (R_k the rotation of cam_from_world), refines in the gravity-aligned world W = A_w * world
+// (A_w takes g_w onto +y, GravityAlignmentFromGravity) and maps the result back by A_w^T: the
+// output is in the caller's world frame, whose axes do not move; only the images' poses and the
+// points do.
+//
+// Rotation models (ThreeViewBundleAdjustmentOptions::RotationModel, the same two as three views):
+//  - kYawOnly: R_k = A_k^T R_y(yaw_k) A_w, with A_k the alignment of image k's measured gravity:
+//  every
+//    image's pitch and roll are exactly those of its gravity (R_k g_w = g_k / |g_k| after the
+//    call), one yaw per image (YawManifold). The initial yaw is the best-fitting yaw of A_k R_k
+//    A_w^T.
+//  - kGravityPrior: R_k free (quaternion cam_from_world [w x y z], ceres::QuaternionManifold) with
+//  a
+//    GravityPriorError(e_y, g_k) per image, weighted by (pixel_sigma_px / gravity_sigma_rad)^2.
+//
+// Gauge (7 dof of a similarity; derivations.md section 14.2):
+//  - kYawOnly: gravity fixes the world's tilt, leaving 4 dof (yaw about gravity, translation) +
+//  scale.
+//    The reference image's yaw and centre are constant; the scale image's centre keeps one
+//    coordinate (ceres::SubsetManifold), the world axis along which it lies farthest from the
+//    reference.
+//  - kGravityPrior: the priors fix the tilt too (the residuals change if the whole reconstruction
+//    tilts), so the same 5 dof are fixed, not 7: the reference image's centre is constant and its
+//    rotation moves only by R <- R Exp(a e_x + b e_z) (rotations about the aligned world's x and z
+//    axes, a 2-dof manifold), so its pitch and roll stay free to follow all images' gravity; the
+//    scale as for kYawOnly. Fixing its whole rotation would tie the reconstruction's tilt to one
+//    image's gravity measurement.
+//
+// Usage:
+//   NViewReconstruction refined;
+//   NViewBundleAdjustmentSummary summary = RefineWithGravity(input, config, options, &refined);
+// or, to add factors of one's own before solving:
+//   NViewBundleAdjuster adjuster(input, config, options);
+//   adjuster.problem()->AddResidualBlock(..., adjuster.CenterBlock(k));
+//   summary = adjuster.Solve();
+//   refined = adjuster.CurrentReconstruction();
+//
+// Cost: see the figures below NViewBundleAdjustmentOptions::linear_solver_type.
+
+#include <ceres/problem.h>
+#include <ceres/solver.h>
+#include <ceres/types.h>
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "trigrav/ba/three_view_bundle_adjustment.h"
+#include "trigrav/initializers/camera_model.h"
+#include "trigrav/initializers/camera_pose.h"
+
+namespace trigrav {
+
+struct NViewImage {
+  int camera_index = -1;      // into NViewReconstruction::cameras
+  CameraPose cam_from_world;  // x_cam = R x_world + t
+  // Measured gravity (down, any positive length) in this image's camera frame.
+  Eigen::Vector3d gravity_in_cam = Eigen::Vector3d::Zero();
+};
+
+struct NViewObservation {
+  int image_index = -1;                             // into NViewReconstruction::images
+  int point_index = -1;                             // into NViewReconstruction::points_in_world
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();  // COLMAP's convention: (0.5, 0.5) is the centre
+                                                    // of the top-left pixel (camera_model.h)
+};
+
+struct NViewReconstruction {
+  std::vector<Camera> cameras;
+  std::vector<NViewImage> images;
+  std::vector<Eigen::Vector3d> points_in_world;
+  std::vector<NViewObservation> observations;
+
+  // Throws std::invalid_argument naming the field and index: a camera that fails Camera::Check(),
+  // a camera/image/point index out of range, a non-finite pose, a rotation that is not a rotation
+  // (|R^T R - I| > 1e-6 or det < 0), a zero-length or non-finite gravity, a non-finite point or
+  // pixel, fewer than 2 images.
+  void Check() const;
+};
+
+// What is refined and how the gauge is fixed (see the header comment).
+struct NViewBundleAdjustmentConfig {
+  // The gauge's reference image: its centre constant, its yaw (kYawOnly) or its rotation about the
+  // world's gravity (kGravityPrior) constant.
+  int reference_image = 0;
+  // The image whose centre fixes the scale by one coordinate; -1: the image whose initial centre is
+  // farthest from the reference image's. Must differ from reference_image.
+  int scale_image = -1;
+  // Images whose pose (yaw or rotation, and centre) is held constant, on top of the gauge.
+  std::vector<int> constant_images;
+  // Keep every point constant (motion-only refinement).
+  bool constant_points = false;
+
+  // Throws std::invalid_argument for indices out of range of `reconstruction`, or a scale image
+  // equal to the reference image.
+  void Check(const NViewReconstruction& reconstruction) const;
+};
+
+struct NViewBundleAdjustmentOptions {
+  using RotationModel = ThreeViewBundleAdjustmentOptions::RotationModel;
+  using LossType = ThreeViewBundleAdjustmentOptions::LossType;
+
+  RotationModel rotation_model = RotationModel::kYawOnly;
+  LossType loss = LossType::kHuber;
+  double loss_scale_px = 2.0;  // Huber / Cauchy scale on the pixel residuals
+  // Pixel noise assumed by the gravity prior's weight and by the covariance's scale.
+  double pixel_sigma_px = 1.0;
+  double gravity_sigma_deg = 0.1;  // IMU angular sigma (kGravityPrior)
+  // Fill NViewBundleAdjustmentSummary::covariances (ceres::Covariance on the camera blocks).
+  bool compute_covariance = false;
+
+  int max_num_iterations = 100;
+  int num_threads = 1;
+  ceres::LinearSolverType linear_solver_type = ceres::SPARSE_SCHUR;
+  double function_tolerance = 1e-6;
+  double gradient_tolerance = 1e-10;
+  double parameter_tolerance = 1e-8;
+
+  // Throws std::invalid_argument naming the first bad field (non-positive or non-finite scales and
+  // sigmas, negative counts or tolerances, enum values out of range).
+  void Check() const;
+  // The ceres::Solver::Options of NViewBundleAdjuster::Solve(): these fields, silent (logging_type
+  // SILENT, no progress on stdout).
+  ceres::Solver::Options CeresSolverOptions() const;
+};
+
+struct NViewBundleAdjustmentSummary {
+  bool success = false;  // Ceres returned a usable solution and every refined value is finite
+  // Why not, when !success (the adjuster's parameters are then restored to the start); when
+  // success, empty or a note (e.g. why the covariances are empty).
+  std::string message;
+  int num_images = 0;
+  int num_points = 0;        // points in the problem (those with >= 2 usable observations)
+  int num_observations = 0;  // observations in the problem
+  // Observations left out: point behind the camera at the start, or of a point left out.
+  int num_skipped_observations = 0;
+  // Unit gravity direction of the caller's world frame that the problem was aligned to.
+  Eigen::Vector3d gravity_in_world = Eigen::Vector3d::Zero();
+  // Per image: RMS of its observations' pixel residual norms at the returned solution (NaN for an
+  // image without observations in the problem).
+  std::vector<double> residual_rms_px;
+  // Per image, when options.compute_covariance and success: the covariance of
+  //   kYawOnly:      [yaw (rad), C_world (3)]                                  4 x 4
+  //   kGravityPrior: [omega (rad, R <- Exp(omega) R, camera frame), C_world]   6 x 6
+  // scaled by pixel_sigma_px^2. Constant (gauge-fixed) parameters have zero rows and columns: the
+  // reference image's yaw and centre (kYawOnly), its centre and the rotation about gravity
+  // (kGravityPrior: rank 2 in omega), the scale image's fixed centre coordinate, constant images.
+  std::vector<Eigen::MatrixXd> covariances;
+  double solve_time_s = 0.0;
+  double covariance_time_s = 0.0;
+  ceres::Solver::Summary ceres_summary;
+
+  double InitialCost() const { return ceres_summary.initial_cost; }
+  double FinalCost() const { return ceres_summary.final_cost; }
+  int Iterations() const {
+    return ceres_summary.num_successful_steps + ceres_summary.num_unsuccessful_steps;
+  }
+  std::string BriefReport() const { return ceres_summary.BriefReport(); }
+};
+
+// Owns the ceres::Problem of an N-view refinement.
+class NViewBundleAdjuster {
+ public:
+  // Keeps a reference to `input`, which must outlive the adjuster, and builds the problem in the
+  // gravity-aligned world. Throws std::invalid_argument for an input failing
+  // NViewReconstruction::Check(), a bad config or bad options. A problem that cannot be built
+  // (e.g. no usable observation, a scale image at the reference's centre) is not misuse: built()
+  // is false, message() says why and Solve() returns a failed summary.
+  NViewBundleAdjuster(const NViewReconstruction& input,
+                      const NViewBundleAdjustmentConfig& config,
+                      const NViewBundleAdjustmentOptions& options);
+  ~NViewBundleAdjuster();
+  NViewBundleAdjuster(const NViewBundleAdjuster&) = delete;
+  NViewBundleAdjuster& operator=(const NViewBundleAdjuster&) = delete;
+
+  // ceres::Solve on problem(), then the checks and the covariances. On failure the parameters are
+  // restored to the start.
+  NViewBundleAdjustmentSummary Solve();
+
+  bool built() const { return built_; }
+  const std::string& message() const { return message_; }
+  const NViewBundleAdjustmentConfig& config() const { return config_; }
+  const NViewBundleAdjustmentOptions& options() const { return options_; }
+
+  // The problem and its parameter blocks, all in the gravity-aligned world W (x_W =
+  // world_aligned_from_world() * x_world), for a caller adding factors (valid when built()):
+  //  - RotationBlock(k): kYawOnly: yaw_k (1, YawManifold; R_k = A_k^T R_y(yaw_k) in W);
+  //    kGravityPrior: cam_from_W as a quaternion [w x y z] (4).
+  //  - CenterBlock(k): the centre of image k in W (3).
+  //  - PointBlock(p): point p in W (3); nullptr for a point left out of the problem.
+  ceres::Problem* problem() { return problem_.get(); }
+  double* RotationBlock(int image);
+  double* CenterBlock(int image);
+  double* PointBlock(int point);
+  const Eigen::Matrix3d& world_aligned_from_world() const { return world_aligned_from_world_; }
+  // The index the gauge uses for the scale (config().scale_image resolved).
+  int scale_image() const { return scale_image_; }
+
+  // The input with the poses and points currently held in the parameter blocks, in the caller's
+  // world frame.
+  NViewReconstruction CurrentReconstruction() const;
+
+ private:
+  void Build();
+  std::vector<double> ResidualRmsPx() const;
+  // Fills summary->covariances; false with a note in summary->message if ceres::Covariance fails.
+  bool ComputeCovariances(NViewBundleAdjustmentSummary* summary);
+
+  const NViewReconstruction& input_;
+  NViewBundleAdjustmentConfig config_;
+  NViewBundleAdjustmentOptions options_;
+  std::unique_ptr<ceres::Problem> problem_;
+  bool built_ = false;
+  std::string message_;
+  int scale_image_ = -1;
+  Eigen::Matrix3d world_aligned_from_world_ = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d gravity_in_world_ = Eigen::Vector3d::Zero();
+
+  // Per image: gravity alignment A_k, yaw, quaternion [w x y z] (cam_from_W), centre in W.
+  std::vector<Eigen::Matrix3d> alignments_;
+  std::vector<double> yaws_;
+  std::vector<Eigen::Vector4d> quaternions_;
+  std::vector<Eigen::Vector3d> centers_;
+  std::vector<Eigen::Vector3d> points_;  // in W
+  std::vector<char> point_used_;         // point in the problem
+  std::vector<int> used_observations_;   // indices into input_.observations
+};
+
+// One call: builds an NViewBundleAdjuster on `input`, solves, and writes the refined reconstruction
+// to *refined (the input's cameras and observations, refined poses and points in the caller's world
+// frame; the input unchanged on failure). `refined` may alias `input`. Throws as the adjuster's
+// constructor; std::invalid_argument for a null `refined`.
+NViewBundleAdjustmentSummary RefineWithGravity(const NViewReconstruction& input,
+                                               const NViewBundleAdjustmentConfig& config,
+                                               const NViewBundleAdjustmentOptions& options,
+                                               NViewReconstruction* refined);
+
+}  // namespace trigrav
+
+#endif  // TRIGRAV_BA_NVIEW_BUNDLE_ADJUSTMENT_H_

@@ -1,0 +1,493 @@
+#include "trigrav/ba/nview_bundle_adjustment.h"
+
+#include <ceres/autodiff_manifold.h>
+#include <ceres/loss_function.h>
+#include <ceres/manifold.h>
+#include <ceres/ordered_groups.h>
+#include <ceres/rotation.h>
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "best_fit_yaw.h"
+#include "robust_loss.h"
+#include "trigrav/factors/angle_manifold.h"
+#include "trigrav/factors/reprojection_factors.h"
+#include "trigrav/initializers/gravity.h"
+
+namespace trigrav {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+[[noreturn]] void Fail(const std::string& where, const std::string& what) {
+  throw std::invalid_argument("trigrav: " + where + ": " + what);
+}
+
+std::string Indexed(const char* field, std::size_t i) {
+  return std::string(field) + "[" + std::to_string(i) + "]";
+}
+
+// The reference image's rotation in the gravity-prior model: R <- R Exp(a e_x + b e_z), rotations
+// about the aligned world's x and z axes, so that the rotation about gravity (the world's yaw, a
+// gauge freedom) stays fixed (derivations.md section 14.2). Quaternions [w x y z] of cam_from_W.
+struct TiltOnlyQuaternionFunctor {
+  template <typename T>
+  bool Plus(const T* x, const T* delta, T* x_plus_delta) const {
+    const T angle_axis[3] = {delta[0], T(0), delta[1]};
+    T q_delta[4];
+    ceres::AngleAxisToQuaternion(angle_axis, q_delta);
+    ceres::QuaternionProduct(x, q_delta, x_plus_delta);
+    return true;
+  }
+  template <typename T>
+  bool Minus(const T* y, const T* x, T* y_minus_x) const {
+    const T x_inverse[4] = {x[0], -x[1], -x[2], -x[3]};
+    T q_delta[4];
+    ceres::QuaternionProduct(x_inverse, y, q_delta);
+    T angle_axis[3];
+    ceres::QuaternionToAngleAxis(q_delta, angle_axis);
+    y_minus_x[0] = angle_axis[0];
+    y_minus_x[1] = angle_axis[2];
+    return true;
+  }
+};
+using TiltOnlyQuaternionManifold = ceres::AutoDiffManifold<TiltOnlyQuaternionFunctor, 4, 2>;
+
+bool IsRotation(const Eigen::Matrix3d& r) {
+  return (r.transpose() * r - Eigen::Matrix3d::Identity()).norm() < 1e-6 && r.determinant() > 0.0;
+}
+
+// The rotation cam_from_W of image k held in its parameter block (model's form).
+Eigen::Matrix3d ModelRotation(bool yaw_only,
+                              const Eigen::Matrix3d& alignment,
+                              double yaw,
+                              const Eigen::Vector4d& quaternion) {
+  if (yaw_only) return alignment.transpose() * RotationAboutY(yaw);
+  return Eigen::Quaterniond(quaternion[0], quaternion[1], quaternion[2], quaternion[3])
+      .normalized()
+      .toRotationMatrix();
+}
+
+}  // namespace
+
+void NViewReconstruction::Check() const {
+  const std::string where = "NViewReconstruction";
+  if (images.size() < 2) Fail(where, "fewer than 2 images");
+  for (std::size_t c = 0; c < cameras.size(); ++c) {
+    try {
+      cameras[c].Check();
+    } catch (const std::invalid_argument& e) {
+      Fail(where, Indexed("cameras", c) + ": " + e.what());
+    }
+  }
+  for (std::size_t k = 0; k < images.size(); ++k) {
+    const NViewImage& image = images[k];
+    if (image.camera_index < 0 || image.camera_index >= static_cast<int>(cameras.size())) {
+      Fail(where, Indexed("images", k) + ".camera_index out of range");
+    }
+    if (!image.cam_from_world.IsFinite()) {
+      Fail(where, Indexed("images", k) + ".cam_from_world is not finite");
+    }
+    if (!IsRotation(image.cam_from_world.R)) {
+      Fail(where, Indexed("images", k) + ".cam_from_world.R is not a rotation");
+    }
+    if (!image.gravity_in_cam.allFinite() || !(image.gravity_in_cam.norm() > 0.0)) {
+      Fail(where, Indexed("images", k) + ".gravity_in_cam is zero or not finite");
+    }
+  }
+  for (std::size_t p = 0; p < points_in_world.size(); ++p) {
+    if (!points_in_world[p].allFinite()) Fail(where, Indexed("points_in_world", p) + " not finite");
+  }
+  for (std::size_t i = 0; i < observations.size(); ++i) {
+    const NViewObservation& observation = observations[i];
+    if (observation.image_index < 0 || observation.image_index >= static_cast<int>(images.size())) {
+      Fail(where, Indexed("observations", i) + ".image_index out of range");
+    }
+    if (observation.point_index < 0 ||
+        observation.point_index >= static_cast<int>(points_in_world.size())) {
+      Fail(where, Indexed("observations", i) + ".point_index out of range");
+    }
+    if (!observation.pixel.allFinite()) {
+      Fail(where, Indexed("observations", i) + ".pixel not finite");
+    }
+  }
+}
+
+void NViewBundleAdjustmentConfig::Check(const NViewReconstruction& reconstruction) const {
+  const std::string where = "NViewBundleAdjustmentConfig";
+  const int n = static_cast<int>(reconstruction.images.size());
+  if (reference_image < 0 || reference_image >= n) Fail(where, "reference_image out of range");
+  if (scale_image < -1 || scale_image >= n) Fail(where, "scale_image out of range");
+  if (scale_image == reference_image) Fail(where, "scale_image equals reference_image");
+  for (std::size_t i = 0; i < constant_images.size(); ++i) {
+    if (constant_images[i] < 0 || constant_images[i] >= n) {
+      Fail(where, Indexed("constant_images", i) + " out of range");
+    }
+  }
+}
+
+void NViewBundleAdjustmentOptions::Check() const {
+  const std::string where = "NViewBundleAdjustmentOptions";
+  auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+  auto tolerance = [](double v) { return v >= 0.0 && std::isfinite(v); };
+  if (!positive(loss_scale_px)) Fail(where, "loss_scale_px must be positive and finite");
+  if (!positive(pixel_sigma_px)) Fail(where, "pixel_sigma_px must be positive and finite");
+  if (!positive(gravity_sigma_deg)) Fail(where, "gravity_sigma_deg must be positive and finite");
+  if (max_num_iterations < 0) Fail(where, "max_num_iterations must be >= 0");
+  if (num_threads < 1) Fail(where, "num_threads must be >= 1");
+  if (!tolerance(function_tolerance)) Fail(where, "function_tolerance must be >= 0 and finite");
+  if (!tolerance(gradient_tolerance)) Fail(where, "gradient_tolerance must be >= 0 and finite");
+  if (!tolerance(parameter_tolerance)) Fail(where, "parameter_tolerance must be >= 0 and finite");
+  if (rotation_model != RotationModel::kYawOnly && rotation_model != RotationModel::kGravityPrior) {
+    Fail(where, "unknown rotation_model");
+  }
+  if (loss != LossType::kNone && loss != LossType::kHuber && loss != LossType::kCauchy) {
+    Fail(where, "unknown loss");
+  }
+  // Ceres aborts (LOG(FATAL)) on an out-of-range solver type; its name round-trips only if valid.
+  ceres::LinearSolverType parsed;
+  if (!ceres::StringToLinearSolverType(ceres::LinearSolverTypeToString(linear_solver_type),
+                                       &parsed) ||
+      parsed != linear_solver_type) {
+    Fail(where, "unknown linear_solver_type");
+  }
+}
+
+ceres::Solver::Options NViewBundleAdjustmentOptions::CeresSolverOptions() const {
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = linear_solver_type;
+  solver_options.preconditioner_type = ceres::SCHUR_JACOBI;  // for ITERATIVE_SCHUR
+  solver_options.max_num_iterations = max_num_iterations;
+  solver_options.num_threads = num_threads;
+  solver_options.function_tolerance = function_tolerance;
+  solver_options.gradient_tolerance = gradient_tolerance;
+  solver_options.parameter_tolerance = parameter_tolerance;
+  solver_options.logging_type = ceres::SILENT;
+  solver_options.minimizer_progress_to_stdout = false;
+  return solver_options;
+}
+
+NViewBundleAdjuster::NViewBundleAdjuster(const NViewReconstruction& input,
+                                         const NViewBundleAdjustmentConfig& config,
+                                         const NViewBundleAdjustmentOptions& options)
+    : input_(input), config_(config), options_(options) {
+  input_.Check();
+  config_.Check(input_);
+  options_.Check();
+  Build();
+}
+
+NViewBundleAdjuster::~NViewBundleAdjuster() = default;
+
+double* NViewBundleAdjuster::RotationBlock(int image) {
+  if (image < 0 || image >= static_cast<int>(input_.images.size())) {
+    Fail("NViewBundleAdjuster::RotationBlock", "image out of range");
+  }
+  return options_.rotation_model == NViewBundleAdjustmentOptions::RotationModel::kYawOnly
+             ? &yaws_[image]
+             : quaternions_[image].data();
+}
+
+double* NViewBundleAdjuster::CenterBlock(int image) {
+  if (image < 0 || image >= static_cast<int>(input_.images.size())) {
+    Fail("NViewBundleAdjuster::CenterBlock", "image out of range");
+  }
+  return centers_[image].data();
+}
+
+double* NViewBundleAdjuster::PointBlock(int point) {
+  if (point < 0 || point >= static_cast<int>(input_.points_in_world.size())) {
+    Fail("NViewBundleAdjuster::PointBlock", "point out of range");
+  }
+  return point_used_[point] ? points_[point].data() : nullptr;
+}
+
+void NViewBundleAdjuster::Build() {
+  const bool yaw_only =
+      options_.rotation_model == NViewBundleAdjustmentOptions::RotationModel::kYawOnly;
+  const int num_images = static_cast<int>(input_.images.size());
+  const int num_points = static_cast<int>(input_.points_in_world.size());
+
+  // The world's gravity: the mean of the images' gravity directions mapped to the world,
+  // g_w ~ sum_k R_k^T g_k / |g_k| (derivations.md section 14.1).
+  Eigen::Vector3d gravity_sum = Eigen::Vector3d::Zero();
+  for (const NViewImage& image : input_.images) {
+    gravity_sum += image.cam_from_world.R.transpose() * image.gravity_in_cam.normalized();
+  }
+  if (!(gravity_sum.norm() > 1e-6 * num_images)) {
+    message_ = "the images' gravity directions cancel out in the world frame";
+    return;
+  }
+  gravity_in_world_ = gravity_sum.normalized();
+  world_aligned_from_world_ = GravityAlignmentFromGravity(gravity_in_world_);
+  const Eigen::Matrix3d& w_from_world = world_aligned_from_world_;
+
+  alignments_.resize(num_images);
+  yaws_.assign(num_images, 0.0);
+  quaternions_.resize(num_images);
+  centers_.resize(num_images);
+  std::vector<Eigen::Matrix3d> rotations(num_images);  // cam_from_W in the model's form
+  for (int k = 0; k < num_images; ++k) {
+    const NViewImage& image = input_.images[k];
+    const Eigen::Matrix3d cam_from_w = image.cam_from_world.R * w_from_world.transpose();
+    alignments_[k] = GravityAlignmentFromGravity(image.gravity_in_cam);
+    yaws_[k] = internal::BestFitYaw(alignments_[k] * cam_from_w);
+    const Eigen::Quaterniond q = Eigen::Quaterniond(cam_from_w).normalized();
+    quaternions_[k] = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+    centers_[k] = w_from_world * image.cam_from_world.Center();
+    rotations[k] = ModelRotation(yaw_only, alignments_[k], yaws_[k], quaternions_[k]);
+  }
+  points_.resize(num_points);
+  for (int p = 0; p < num_points; ++p) points_[p] = w_from_world * input_.points_in_world[p];
+
+  // Observations of points in front of their camera; points with >= 2 of them.
+  std::vector<char> in_front(input_.observations.size(), 0);
+  std::vector<int> count(num_points, 0);
+  for (std::size_t i = 0; i < input_.observations.size(); ++i) {
+    const NViewObservation& o = input_.observations[i];
+    const Eigen::Vector3d x_cam =
+        rotations[o.image_index] * (points_[o.point_index] - centers_[o.image_index]);
+    if (x_cam.z() > 0.0) {
+      in_front[i] = 1;
+      ++count[o.point_index];
+    }
+  }
+  point_used_.assign(num_points, 0);
+  for (int p = 0; p < num_points; ++p) point_used_[p] = count[p] >= 2;
+  used_observations_.clear();
+  std::vector<char> image_used(num_images, 0);
+  for (std::size_t i = 0; i < input_.observations.size(); ++i) {
+    const NViewObservation& o = input_.observations[i];
+    if (in_front[i] && point_used_[o.point_index]) {
+      used_observations_.push_back(static_cast<int>(i));
+      image_used[o.image_index] = 1;
+    }
+  }
+
+  // Gauge (derivations.md section 14.2).
+  const int reference = config_.reference_image;
+  scale_image_ = config_.scale_image;
+  if (scale_image_ < 0) {
+    double farthest = -1.0;
+    for (int k = 0; k < num_images; ++k) {
+      const double d = (centers_[k] - centers_[reference]).norm();
+      if (k != reference && image_used[k] && d > farthest) {
+        farthest = d;
+        scale_image_ = k;
+      }
+    }
+  }
+  if (!image_used[reference]) {
+    message_ = "the reference image has no usable observation";
+    return;
+  }
+  if (scale_image_ < 0 || !image_used[scale_image_]) {
+    message_ = "the scale image has no usable observation";
+    return;
+  }
+  const Eigen::Vector3d baseline = centers_[scale_image_] - centers_[reference];
+  int scale_axis = 0;
+  baseline.cwiseAbs().maxCoeff(&scale_axis);
+  double scene_extent = 0.0;
+  for (const Eigen::Vector3d& c : centers_) {
+    scene_extent = std::max(scene_extent, (c - centers_[reference]).norm());
+  }
+  if (!(baseline.norm() > 1e-9 * scene_extent)) {
+    message_ = "the scale image's centre coincides with the reference image's";
+    return;
+  }
+
+  // The problem holds one factor per observation; one loss is shared (Ceres counts references).
+  ceres::Problem::Options problem_options;
+  problem_options.disable_all_safety_checks = true;
+  problem_ = std::make_unique<ceres::Problem>(problem_options);
+  ceres::LossFunction* loss = internal::MakeLoss(options_.loss, options_.loss_scale_px);
+  const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();  // W is gravity-aligned: A_W = I
+  for (const int i : used_observations_) {
+    const NViewObservation& o = input_.observations[i];
+    const int k = o.image_index;
+    const PixelResidual residual{input_.cameras[input_.images[k].camera_index], o.pixel};
+    ceres::CostFunction* cost = yaw_only ? YawOnlyReprojectionError<PixelResidual>::Create(
+                                               residual, alignments_[k], identity)
+                                         : ReprojectionError<PixelResidual>::Create(residual);
+    problem_->AddResidualBlock(cost, loss, RotationBlock(k), centers_[k].data(),
+                               points_[o.point_index].data());
+  }
+  const double gravity_weight =
+      std::pow(options_.pixel_sigma_px / (options_.gravity_sigma_deg * kDegToRad), 2);
+  for (int k = 0; k < num_images; ++k) {
+    if (!image_used[k]) continue;
+    if (yaw_only) {
+      problem_->SetManifold(&yaws_[k], CreateYawManifold());
+    } else {
+      // Pixel residuals and the prior's radians whitened alike: weight (sigma_px / sigma_g)^2.
+      problem_->AddResidualBlock(
+          GravityPriorError::Create(Eigen::Vector3d::UnitY(), input_.images[k].gravity_in_cam),
+          new ceres::ScaledLoss(nullptr, gravity_weight, ceres::TAKE_OWNERSHIP),
+          quaternions_[k].data());
+      problem_->SetManifold(quaternions_[k].data(),
+                            k == reference
+                                ? static_cast<ceres::Manifold*>(new TiltOnlyQuaternionManifold)
+                                : new ceres::QuaternionManifold);
+    }
+  }
+  if (yaw_only) problem_->SetParameterBlockConstant(&yaws_[reference]);
+  problem_->SetParameterBlockConstant(centers_[reference].data());
+  problem_->SetManifold(centers_[scale_image_].data(),
+                        new ceres::SubsetManifold(3, std::vector<int>{scale_axis}));
+  for (const int k : config_.constant_images) {
+    if (!image_used[k]) continue;
+    problem_->SetParameterBlockConstant(RotationBlock(k));
+    problem_->SetParameterBlockConstant(centers_[k].data());
+  }
+  if (config_.constant_points) {
+    for (int p = 0; p < num_points; ++p) {
+      if (point_used_[p]) problem_->SetParameterBlockConstant(points_[p].data());
+    }
+  }
+  built_ = true;
+  message_.clear();
+}
+
+std::vector<double> NViewBundleAdjuster::ResidualRmsPx() const {
+  const bool yaw_only =
+      options_.rotation_model == NViewBundleAdjustmentOptions::RotationModel::kYawOnly;
+  const int num_images = static_cast<int>(input_.images.size());
+  std::vector<Eigen::Matrix3d> rotations(num_images);
+  for (int k = 0; k < num_images; ++k) {
+    rotations[k] = ModelRotation(yaw_only, alignments_[k], yaws_[k], quaternions_[k]);
+  }
+  std::vector<double> sum(num_images, 0.0);
+  std::vector<int> count(num_images, 0);
+  for (const int i : used_observations_) {
+    const NViewObservation& o = input_.observations[i];
+    const int k = o.image_index;
+    const Eigen::Vector3d x_cam = rotations[k] * (points_[o.point_index] - centers_[k]);
+    const double r =
+        x_cam.z() > 0.0
+            ? (input_.cameras[input_.images[k].camera_index].Project(x_cam) - o.pixel).squaredNorm()
+            : std::numeric_limits<double>::infinity();
+    sum[k] += r;
+    ++count[k];
+  }
+  std::vector<double> rms(num_images, std::numeric_limits<double>::quiet_NaN());
+  for (int k = 0; k < num_images; ++k) {
+    if (count[k] > 0) rms[k] = std::sqrt(sum[k] / count[k]);
+  }
+  return rms;
+}
+
+NViewReconstruction NViewBundleAdjuster::CurrentReconstruction() const {
+  NViewReconstruction out = input_;
+  if (alignments_.empty()) return out;  // the build stopped before the parameters were set
+  const bool yaw_only =
+      options_.rotation_model == NViewBundleAdjustmentOptions::RotationModel::kYawOnly;
+  const Eigen::Matrix3d& w_from_world = world_aligned_from_world_;
+  for (std::size_t k = 0; k < out.images.size(); ++k) {
+    // cam_from_world = cam_from_W * W_from_world; C_world = W_from_world^T C_W.
+    CameraPose& pose = out.images[k].cam_from_world;
+    pose.R = ModelRotation(yaw_only, alignments_[k], yaws_[k], quaternions_[k]) * w_from_world;
+    pose.t = -pose.R * (w_from_world.transpose() * centers_[k]);
+  }
+  for (std::size_t p = 0; p < out.points_in_world.size(); ++p) {
+    if (point_used_[p]) out.points_in_world[p] = w_from_world.transpose() * points_[p];
+  }
+  return out;
+}
+
+NViewBundleAdjustmentSummary NViewBundleAdjuster::Solve() {
+  NViewBundleAdjustmentSummary summary;
+  summary.num_images = static_cast<int>(input_.images.size());
+  summary.gravity_in_world = gravity_in_world_;
+  if (!built_) {
+    summary.message = message_;
+    return summary;
+  }
+  summary.num_observations = static_cast<int>(used_observations_.size());
+  summary.num_skipped_observations =
+      static_cast<int>(input_.observations.size()) - summary.num_observations;
+  for (const char used : point_used_) summary.num_points += used;
+
+  const std::vector<double> start_yaws = yaws_;
+  const std::vector<Eigen::Vector4d> start_quaternions = quaternions_;
+  const std::vector<Eigen::Vector3d> start_centers = centers_, start_points = points_;
+
+  ceres::Solver::Options solver_options = options_.CeresSolverOptions();
+  // Points first, then the cameras (what Ceres' search would find, given), when the problem holds
+  // only the adjuster's blocks; blocks a caller added leave the ordering to Ceres.
+  const bool schur = solver_options.linear_solver_type == ceres::DENSE_SCHUR ||
+                     solver_options.linear_solver_type == ceres::SPARSE_SCHUR ||
+                     solver_options.linear_solver_type == ceres::ITERATIVE_SCHUR;
+  std::vector<double*> blocks;
+  problem_->GetParameterBlocks(&blocks);
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+  int num_own_blocks = 0;
+  for (std::size_t p = 0; p < points_.size(); ++p) {
+    if (point_used_[p] && problem_->HasParameterBlock(points_[p].data())) {
+      ordering->AddElementToGroup(points_[p].data(), 0);
+      ++num_own_blocks;
+    }
+  }
+  for (std::size_t k = 0; k < input_.images.size(); ++k) {
+    for (double* block : {RotationBlock(static_cast<int>(k)), centers_[k].data()}) {
+      if (problem_->HasParameterBlock(block)) {
+        ordering->AddElementToGroup(block, 1);
+        ++num_own_blocks;
+      }
+    }
+  }
+  if (schur && num_own_blocks == static_cast<int>(blocks.size()) && !config_.constant_points) {
+    solver_options.linear_solver_ordering = std::move(ordering);
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  ceres::Solve(solver_options, problem_.get(), &summary.ceres_summary);
+  summary.solve_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  bool finite = true;
+  for (std::size_t k = 0; k < input_.images.size(); ++k) {
+    finite =
+        finite && std::isfinite(yaws_[k]) && quaternions_[k].allFinite() && centers_[k].allFinite();
+  }
+  for (const Eigen::Vector3d& x : points_) finite = finite && x.allFinite();
+  if (!summary.ceres_summary.IsSolutionUsable() || !finite ||
+      !std::isfinite(summary.ceres_summary.final_cost)) {
+    yaws_ = start_yaws;
+    quaternions_ = start_quaternions;
+    centers_ = start_centers;
+    points_ = start_points;
+    summary.message =
+        !finite ? "the solution is not finite" : "Ceres failed: " + summary.ceres_summary.message;
+    return summary;
+  }
+  summary.success = true;
+  if (summary.ceres_summary.termination_type == ceres::NO_CONVERGENCE) {
+    summary.message = "max_num_iterations reached before convergence";
+  }
+  summary.residual_rms_px = ResidualRmsPx();
+  if (options_.compute_covariance) ComputeCovariances(&summary);
+  return summary;
+}
+
+NViewBundleAdjustmentSummary RefineWithGravity(const NViewReconstruction& input,
+                                               const NViewBundleAdjustmentConfig& config,
+                                               const NViewBundleAdjustmentOptions& options,
+                                               NViewReconstruction* refined) {
+  if (refined == nullptr) Fail("RefineWithGravity", "refined is null");
+  NViewBundleAdjuster adjuster(input, config, options);
+  NViewBundleAdjustmentSummary summary = adjuster.Solve();
+  if (summary.success) {
+    NViewReconstruction result = adjuster.CurrentReconstruction();  // `refined` may alias `input`
+    *refined = std::move(result);
+  } else if (refined != &input) {
+    *refined = input;
+  }
+  return summary;
+}
+
+}  // namespace trigrav

@@ -230,9 +230,6 @@ def run_sequence(args, seq, tools):
     images = image_folder(args, stages)
     times = front_end(args, stages, images)
     poses_path = os.path.join(args.kitti_path, "poses", seq + ".txt")
-    # The gravity CSVs cover every image of the sequence's own folder (same names, frame k = k-th
-    # file): a superset of the images, and no links, whose targets make_gravity_csv would name.
-    kitti_images = os.path.join(args.kitti_path, "sequences", seq, "image_0")
     ground_truth = evaluation.read_kitti_poses(poses_path)
     rows = []
 
@@ -253,7 +250,7 @@ def run_sequence(args, seq, tools):
         for tag, noise, _ in GRAVITY:
             stages.run("gravity_" + tag,
                        [tools["make_gravity_csv"], "--poses_path", poses_path, "--image_path",
-                        kitti_images, "--output_path", stages.path("gravity_%s.csv" % tag),
+                        images, "--output_path", stages.path("gravity_%s.csv" % tag),
                         "--noise_deg", str(noise), "--seed", str(NOISE_SEED)],
                        ["gravity_%s.csv" % tag])
 

@@ -11,6 +11,7 @@ import unittest
 
 import numpy as np
 
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from kitti_experiment import colmap_model, evaluation  # noqa: E402
 

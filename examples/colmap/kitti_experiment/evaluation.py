@@ -128,6 +128,6 @@ def evaluate(model, gt_rotations, gt_centres):
         "rotation_mean_deg": _mean(rotation_errors),
         "centre_spread": float(singular[1] / singular[0]) if singular[0] > 0 else 0.0,
         "trajectory": {"frame": frames.tolist(), "x": aligned[:, 0].tolist(),
-                       "z": aligned[:, 2].tolist()},
+                       "z": aligned[:, 2].tolist(), "error_m": position_errors.tolist()},
     })
     return result

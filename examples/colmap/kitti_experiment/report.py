@@ -58,24 +58,34 @@ def markdown(results):
 
 
 def plot(results, ground_truth, png_path):
-    """Top view (x right, z forward of frame 0's camera, metres): ground truth and every variant
-    after its Sim(3) alignment, one panel per sequence."""
+    """Per sequence, a column: top view (x right, z forward of frame 0's camera, metres) of the
+    ground truth and every variant after its Sim(3) alignment; below it each camera's position
+    error after that alignment against the frame."""
     sequences = list(results["sequences"].items())
-    fig, axes = plt.subplots(1, len(sequences), figsize=(6.5 * len(sequences), 6.0), squeeze=False)
-    for ax, (seq, sequence) in zip(axes[0], sequences):
+    fig, axes = plt.subplots(2, len(sequences), figsize=(6.5 * len(sequences), 9.0),
+                             squeeze=False, gridspec_kw={"height_ratios": [2, 1]})
+    for column, (seq, sequence) in enumerate(sequences):
+        top, error = axes[0][column], axes[1][column]
         centres = ground_truth[seq][:sequence["frames"]]
-        ax.plot(centres[:, 0], centres[:, 2], color="0.6", linewidth=4, label="ground truth")
+        top.plot(centres[:, 0], centres[:, 2], color="0.6", linewidth=4, label="ground truth")
         for row in sequence["variants"]:
             trajectory = row.get("trajectory")
-            if trajectory:
-                ax.plot(trajectory["x"], trajectory["z"], linewidth=1.2, marker=".",
-                        markersize=2, label="%s (%d)" % (row["variant"], row["registered"]))
-        ax.set_title("KITTI %s, frames 0-%d" % (seq, sequence["frames"] - 1))
-        ax.set_xlabel("x (m)")
-        ax.set_ylabel("z (m)")
-        ax.set_aspect("equal", adjustable="datalim")
-        ax.grid(True, linewidth=0.3)
-        ax.legend(fontsize=7, loc="best")
+            if not trajectory:
+                continue
+            label = "%s (%d)" % (row["variant"], row["registered"])
+            style = "--" if "BA" in row["variant"] else "-"
+            line, = top.plot(trajectory["x"], trajectory["z"], style, linewidth=1.2, label=label)
+            error.plot(trajectory["frame"], trajectory["error_m"], style, linewidth=1.0,
+                       color=line.get_color())
+        top.set_title("KITTI %s, frames 0-%d" % (seq, sequence["frames"] - 1))
+        top.set_xlabel("x (m)")
+        top.set_ylabel("z (m)")
+        top.set_aspect("equal", adjustable="datalim")
+        top.grid(True, linewidth=0.3)
+        top.legend(fontsize=7, loc="best")
+        error.set_xlabel("frame")
+        error.set_ylabel("position error after Sim(3) alignment (m)")
+        error.grid(True, linewidth=0.3)
     fig.tight_layout()
-    fig.savefig(png_path, dpi=120)
+    fig.savefig(png_path, dpi=110)
     plt.close(fig)

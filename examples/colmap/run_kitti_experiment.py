@@ -20,7 +20,8 @@ Per sequence (work folder <work_dir>/<seq>/):
               absolute rotation error and ATE RMSE after Sim(3) alignment of the camera centres,
               relative pose errors of consecutive frames, run time.
 Every stage logs to <stage>.log and writes <stage>.json (command, seconds, exit status); a stage
-whose json and outputs exist is skipped (--fresh redoes everything). A front end made by hand with
+whose json (same command, newer than those of the stages it reads) and outputs exist is skipped
+(--fresh redoes everything). A front end made by hand with
 `/usr/bin/time -v colmap ... 2> extract.time` and `touch extract.done` (the same for match) is
 reused: point --front_end_dir at its folder (<dir>/<seq>/database.db, extract.time, match.done ...);
 its database is copied, never written. Results: <work_dir>/results.json and results.md (also on
@@ -56,31 +57,35 @@ class Stages:
 
     def __init__(self, work, seq, fresh):
         self.work, self.seq, self.fresh = work, seq, fresh
-        self.ran = False  # once a stage runs, the later ones (which may use its outputs) run too
         self.env = dict(os.environ, QT_QPA_PLATFORM="offscreen")
 
     def path(self, *names):
         return os.path.join(self.work, *names)
 
-    def cached(self, name, command, outputs):
+    def cached(self, name, command, outputs, inputs):
         """The record of a stage run before with the same command (or a front end made with GNU
-        time) whose outputs exist, else None."""
+        time) whose outputs exist and whose input stages have not run since, else None."""
         record_path = self.path(name + ".json")
-        if self.fresh or self.ran or not os.path.isfile(record_path):
+        if self.fresh or not os.path.isfile(record_path):
             return None
         if not all(os.path.exists(self.path(o)) for o in outputs):
+            return None
+        if any(os.path.getmtime(self.path(i + ".json")) > os.path.getmtime(record_path)
+               for i in inputs):
             return None
         with open(record_path) as f:
             record = json.load(f)
         return record if record.get("gnu_time") or record["command"] == command else None
 
-    def run(self, name, command, outputs, may_fail=False, nice=False, make_dirs=(), clean=True):
-        """Runs `command` unless cached; returns its record. Removes the outputs first when clean
-        (not for a stage that adds to its input, as the matcher to the database). A non-zero exit
-        stops the experiment unless may_fail (the mapper failing to initialise is a result)."""
+    def run(self, name, command, outputs, inputs=(), may_fail=False, nice=False, make_dirs=(),
+            clean=True):
+        """Runs `command` unless cached; returns its record. `inputs`: the stages whose outputs it
+        reads (a newer record of one makes it run again). Removes the outputs first when clean (not
+        for a stage that adds to its input, as the matcher to the database). A non-zero exit stops
+        the experiment unless may_fail (the mapper failing to initialise is a result)."""
         if nice:
             command = ["nice", "-n", "5"] + command
-        record = self.cached(name, command, outputs)
+        record = self.cached(name, command, outputs, inputs)
         if record is not None:
             print("[%s] %-28s cached (%.1f s)" % (self.seq, name, record["seconds"]), flush=True)
             return record
@@ -93,7 +98,6 @@ class Stages:
                     os.remove(path)
         for d in make_dirs:
             os.makedirs(self.path(d), exist_ok=True)
-        self.ran = True
         log_path = self.path(name + ".log")
         start = time.monotonic()
         with open(log_path, "w") as log:
@@ -199,17 +203,17 @@ def front_end(args, stages, images):
     match = ["colmap", "sequential_matcher", "--database_path", database,
              "--SiftMatching.use_gpu", "0", "--SequentialMatching.overlap", str(args.overlap),
              "--SequentialMatching.quadratic_overlap", str(args.quadratic_overlap)]
-    times["match_seconds"] = stages.run("match", match, ["database.db"], clean=False)["seconds"]
+    times["match_seconds"] = stages.run("match", match, ["database.db"], ["extract"], clean=False)["seconds"]
     in_database = len(database_image_names(database))
     if in_database != args.frames:
         sys.exit("%s holds %d images, not --frames %d" % (database, in_database, args.frames))
     return times
 
 
-def mapper(stages, name, images, extra, output):
+def mapper(stages, name, images, extra, output, inputs=("match",)):
     command = ["colmap", "mapper", "--database_path", stages.path("database.db"),
                "--image_path", images, "--output_path", stages.path(output)] + extra
-    return stages.run(name, command, [output], may_fail=True, nice=True,
+    return stages.run(name, command, [output], inputs, may_fail=True, nice=True,
                       make_dirs=[output])
 
 
@@ -262,9 +266,10 @@ def run_sequence(args, seq, tools):
              stages.path("database.db"), "--gravity_csv", stages.path("gravity_exact.csv"),
              "--output_csv", stages.path("triplets.csv"), "--output_model_path",
              stages.path("triplet_model"), "--triplets", "consecutive"],
-            ["triplets.csv", "triplet_model"], nice=True)
+            ["triplets.csv", "triplet_model"], ["match", "gravity_exact"], nice=True)
         record = mapper(stages, "mapper_triplet", images,
-                        ["--input_path", stages.path("triplet_model")], "sparse_triplet")
+                        ["--input_path", stages.path("triplet_model")], "sparse_triplet",
+                        ("match", "triplet_initializer"))
         add("trigrav triplet + COLMAP", "sparse_triplet",
             initializer["seconds"] + record["seconds"])
 
@@ -279,7 +284,8 @@ def run_sequence(args, seq, tools):
                                "--rotation_model", rotation_model]
                     if rotation_model == "gravity_prior":
                         command += ["--gravity_sigma_deg", str(sigma)]
-                    record = stages.run(name, command, [name], nice=True)
+                    record = stages.run(name, command, [name],
+                                        ["mapper_" + base, "gravity_" + tag], nice=True)
                     gravity = "exact" if tag == "exact" else "%g deg" % NOISE_DEG
                     prior = " (sigma %g deg)" % sigma if rotation_model == "gravity_prior" else ""
                     add("%s + BA %s, %s gravity%s" % (base, rotation_model, gravity, prior), name,

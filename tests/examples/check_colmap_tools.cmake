@@ -10,19 +10,8 @@
 # 3. Bad input: a gravity CSV missing an image, NaN gravity, a missing model folder: non-zero exit,
 #    a message naming the problem, no output folder.
 cmake_minimum_required(VERSION 3.21)
+include(${CMAKE_CURRENT_LIST_DIR}/script_checks.cmake)
 
-set(failures "")
-macro(expect what)
-  if(NOT (${ARGN}))
-    list(APPEND failures "${what}")
-  endif()
-endmacro()
-# expect() with a regex that may hold spaces (expect's arguments are split on them).
-function(expect_match what text regex)
-  if(NOT text MATCHES "${regex}")
-    set(failures ${failures} "${what}" PARENT_SCOPE)
-  endif()
-endfunction()
 
 # Runs the command in ARGN; sets <name>_status, <name>_out, <name>_err.
 macro(run name)
@@ -129,8 +118,4 @@ run(empty_model ${ADJUSTER} --input_path=${WORK_DIR}/empty_model --gravity_csv=$
 expect("an empty model folder: exit 1" empty_model_status EQUAL 1)
 expect("an empty model folder: no output" NOT EXISTS "${WORK_DIR}/out_empty_model")
 
-if(failures)
-  list(JOIN failures "\n  " text)
-  message(FATAL_ERROR "failed:\n  ${text}")
-endif()
-message(STATUS "all checks passed")
+report_failures(colmap_tools)

@@ -9,10 +9,8 @@
 # Checks: 3 consecutive triplets, at least one trusted; the seed model has 3 images; COLMAP's
 # mapper registers all 5 frames from it; the gravity bundle adjustment of the result succeeds.
 cmake_minimum_required(VERSION 3.21)
+include(${CMAKE_CURRENT_LIST_DIR}/script_checks.cmake)
 
-if(DEFINED ENV{TRIGRAV_KITTI_DIR} AND NOT "$ENV{TRIGRAV_KITTI_DIR}" STREQUAL "")
-  set(KITTI_DIR "$ENV{TRIGRAV_KITTI_DIR}")
-endif()
 if(NOT COLMAP)
   message("colmap walkthrough test skipped: the colmap executable was not found")
   return()
@@ -24,18 +22,6 @@ if(NOT EXISTS "${frames}/000004.png" OR NOT EXISTS "${KITTI_DIR}/poses/00.txt")
   return()
 endif()
 
-set(failures "")
-macro(expect what)
-  if(NOT (${ARGN}))
-    list(APPEND failures "${what}")
-  endif()
-endmacro()
-# expect() with a regex that may hold spaces (expect's arguments are split on them).
-function(expect_match what text regex)
-  if(NOT text MATCHES "${regex}")
-    set(failures ${failures} "${what}" PARENT_SCOPE)
-  endif()
-endfunction()
 # Runs the command in ARGN; sets <name>_status, <name>_out, <name>_err; stops on a failure.
 macro(run name)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE ${name}_status OUTPUT_VARIABLE ${name}_out
@@ -87,8 +73,4 @@ run(gravity_bundle_adjuster ${ADJUSTER} --input_path=${WORK_DIR}/mapped
 message(STATUS "${gravity_bundle_adjuster_out}")
 expect("the gravity bundle adjustment writes a model" EXISTS "${WORK_DIR}/refined/images.bin")
 
-if(failures)
-  list(JOIN failures "\n  " text)
-  message(FATAL_ERROR "failed:\n  ${text}")
-endif()
-message(STATUS "all checks passed")
+report_failures(colmap_walkthrough)

@@ -16,28 +16,14 @@
 #    it back (no gross error, rotation below 0.08 deg, tilt below half the raw one).
 
 cmake_minimum_required(VERSION 3.21)
+include(${CMAKE_CURRENT_LIST_DIR}/script_checks.cmake)
 
-if(DEFINED ENV{TRIGRAV_KITTI_DIR} AND NOT "$ENV{TRIGRAV_KITTI_DIR}" STREQUAL "")
-  set(KITTI_DIR "$ENV{TRIGRAV_KITTI_DIR}")
-endif()
 if(NOT IS_DIRECTORY "${KITTI_DIR}/sequences/00/image_0" OR NOT EXISTS "${KITTI_DIR}/poses/00.txt")
   message("kitti_triplets test skipped: KITTI odometry data not found in ${KITTI_DIR} (set "
           "TRIGRAV_KITTI_DIR to a folder with sequences/00 and poses/00.txt)")
   return()
 endif()
 
-# Each failed check appends its description to `failures`; all are reported at the end.
-set(failures "")
-macro(expect what)
-  if(NOT (${ARGN}))
-    list(APPEND failures "${what}")
-  endif()
-endmacro()
-function(expect_match what text regex)
-  if(NOT text MATCHES "${regex}")
-    set(failures ${failures} "${what}" PARENT_SCOPE)
-  endif()
-endfunction()
 
 # <out> = floor(|value| * 1e6) with value's sign, an integer for math(EXPR); value as printed by
 # %g or %f ("0.0227", "-1.5e-07", "662.5"); "inf" gives 10^15.
@@ -217,8 +203,4 @@ expect("0.1 deg IMU: gravity-prior tilt below half the raw tilt"
 expect("0.1 deg IMU: gravity-prior translation < 3 deg"
   imu_3pt_gravity-prior_median_trans_deg LESS 3000000)
 
-if(failures)
-  list(JOIN failures "\n  " text)
-  message(FATAL_ERROR "kitti_triplets checks failed:\n  ${text}")
-endif()
-message("kitti_triplets: every check passed")
+report_failures(kitti_triplets)

@@ -14,6 +14,7 @@
 
 #include "best_fit_yaw.h"
 #include "robust_loss.h"
+#include "silent_solver_options.h"
 #include "trigrav/factors/angle_manifold.h"
 #include "trigrav/factors/reprojection_factors.h"
 #include "trigrav/initializers/gravity.h"
@@ -34,8 +35,8 @@ std::string Indexed(const char* field, std::size_t i) {
 // The reference image's rotation in the gravity-prior model (derivations.md section 14.2): the
 // chart R = R_0 Exp(a e_x + b e_z) around its starting rotation R_0 (cam_from_W), i.e. rotations
 // about the aligned world's x and z axes only, so that its rotation about gravity (the world's yaw,
-// a gauge freedom) stays exactly that of R_0. Plus(q, delta) = q_0 Exp(Log(q_0^-1 q) + [d0, 0,
-// d1]); quaternions [w x y z].
+// a gauge freedom) stays that of R_0 on this chart (no rotation about W's y is applied to R_0).
+// Plus(q, delta) = q_0 Exp(Log(q_0^-1 q) + [d0, 0, d1]); quaternions [w x y z].
 class TiltChartFunctor {
  public:
   explicit TiltChartFunctor(const Eigen::Vector4d& q0) : q0_(q0) {}
@@ -178,14 +179,15 @@ void NViewBundleAdjustmentOptions::Check() const {
 ceres::Solver::Options NViewBundleAdjustmentOptions::CeresSolverOptions() const {
   ceres::Solver::Options solver_options;
   solver_options.linear_solver_type = linear_solver_type;
-  solver_options.preconditioner_type = ceres::SCHUR_JACOBI;  // for ITERATIVE_SCHUR
+  if (linear_solver_type == ceres::ITERATIVE_SCHUR) {
+    solver_options.preconditioner_type = ceres::SCHUR_JACOBI;
+  }
   solver_options.max_num_iterations = max_num_iterations;
   solver_options.num_threads = num_threads;
   solver_options.function_tolerance = function_tolerance;
   solver_options.gradient_tolerance = gradient_tolerance;
   solver_options.parameter_tolerance = parameter_tolerance;
-  solver_options.logging_type = ceres::SILENT;
-  solver_options.minimizer_progress_to_stdout = false;
+  internal::MakeSolverSilent(&solver_options);
   return solver_options;
 }
 
@@ -472,6 +474,11 @@ NViewBundleAdjustmentSummary NViewBundleAdjuster::Solve() {
     solver_options.linear_solver_ordering = std::move(ordering);
   }
 
+  std::string error;
+  if (!solver_options.IsValid(&error)) {
+    summary.message = "invalid Ceres options: " + error;
+    return summary;
+  }
   const auto start = std::chrono::steady_clock::now();
   ceres::Solve(solver_options, problem_.get(), &summary.ceres_summary);
   summary.solve_time_s =

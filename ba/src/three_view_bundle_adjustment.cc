@@ -12,6 +12,7 @@
 
 #include "best_fit_yaw.h"
 #include "robust_loss.h"
+#include "silent_solver_options.h"
 #include "three_view_lm_solver.h"
 #include "trigrav/factors/angle_manifold.h"
 #include "trigrav/factors/reprojection_factors.h"
@@ -85,17 +86,7 @@ ceres::Solver::Options ThreeViewBundleAdjustmentOptions::CeresSolverOptions() co
   solver_options.function_tolerance = function_tolerance;
   solver_options.gradient_tolerance = gradient_tolerance;
   solver_options.parameter_tolerance = parameter_tolerance;
-  // Nothing on stdout or stderr. SILENT does not cover Ceres 2.1's unconditional LOG(WARNING) in
-  // levenberg_marquardt_strategy.cc on a failed linear solve ("Linear solver failure ... Unable to
-  // perform dense Cholesky factorization", on stderr without InitGoogleLogging; Ceres then retries
-  // with a smaller radius). DENSE_SCHUR's reduced system fails once the trust region radius passes
-  // ~1e8 (distant points: near-singular point blocks, round-off growing with the radius while the
-  // damping falls as 1 / radius). At Ceres' default cap (1e16) 30 of 1000 InitializeAndRefine calls
-  // on driving triplets printed; at 1e7 none, same median errors (tests/ba/quiet_test.cc). No glog
-  // flag is touched.
-  solver_options.logging_type = ceres::SILENT;
-  solver_options.minimizer_progress_to_stdout = false;
-  solver_options.max_trust_region_radius = 1e7;
+  internal::MakeSolverSilent(&solver_options);
   return solver_options;
 }
 

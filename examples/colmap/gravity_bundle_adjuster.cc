@@ -4,23 +4,26 @@
 //
 //   gravity_bundle_adjuster --input_path=sparse/0 --gravity_csv=g.csv --output_path=refined
 //
-// Nothing is written unless the refinement succeeds: an image without gravity, a bad model or a
-// failed solve leave --output_path untouched. README.md describes the flags.
+// Nothing is written unless the refinement succeeds: an image without gravity, a bad model, a
+// failed solve or an unwritable --covariance_csv leave --output_path and --covariance_csv
+// untouched. README.md describes the flags.
 
 #include <gflags/gflags.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "common/require_flag.h"
 #include "nview_conversion.h"
+#include "staged_file.h"
 #include "trigrav/ba/nview_bundle_adjustment.h"
 #include "trigrav/colmap/gravity_csv.h"
 #include "trigrav/colmap/model_io.h"
@@ -99,12 +102,10 @@ Options AdjusterOptions() {
 
 // One row per image: name, id, then the covariance (layout of NViewBundleAdjustmentSummary::
 // covariances) row-major, space separated.
-void WriteCovarianceCsv(const colmap::Reconstruction& model,
-                        const tools::NViewInput& input,
-                        const trigrav::NViewBundleAdjustmentSummary& summary,
-                        const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write --covariance_csv=" + path);
+std::string FormatCovarianceCsv(const colmap::Reconstruction& model,
+                                const tools::NViewInput& input,
+                                const trigrav::NViewBundleAdjustmentSummary& summary) {
+  std::ostringstream out;
   out << std::setprecision(17);
   out << "# per image: the covariance of "
       << (FLAGS_rotation_model == "yaw_only" ? "[yaw (rad), C_world (3)], 4x4"
@@ -119,8 +120,7 @@ void WriteCovarianceCsv(const colmap::Reconstruction& model,
     }
     out << '\n';
   }
-  out.flush();
-  if (!out) throw std::runtime_error("error writing --covariance_csv=" + path);
+  return out.str();
 }
 
 int Run() {
@@ -141,12 +141,25 @@ int Run() {
     return 1;
   }
   const colmap::Reconstruction result = tools::FromNView(model, input, refined);
+  // The covariance CSV is staged before the model and committed after it: a failure leaves
+  // neither.
+  std::unique_ptr<tools::StagedFile> covariance_csv;
+  if (options.compute_covariance) {
+    covariance_csv = std::make_unique<tools::StagedFile>(
+        FLAGS_covariance_csv, FormatCovarianceCsv(result, input, summary));
+  }
   fs::create_directories(FLAGS_output_path);
   colmap::WriteModel(
       result, FLAGS_output_path,
       FLAGS_output_format == "text" ? colmap::ModelFormat::kText : colmap::ModelFormat::kBinary);
-  if (options.compute_covariance) {
-    WriteCovarianceCsv(result, input, summary, FLAGS_covariance_csv);
+  if (covariance_csv) {
+    try {
+      covariance_csv->Commit();
+    } catch (const std::exception& error) {
+      std::cerr << "error: " << error.what() << "; the model is written to " << FLAGS_output_path
+                << ", the covariance CSV is not" << std::endl;
+      return 1;
+    }
   }
   std::vector<double> rms = summary.residual_rms_px;
   rms.erase(std::remove_if(rms.begin(), rms.end(), [](double r) { return !std::isfinite(r); }),

@@ -10,6 +10,9 @@
 // separated), in sorted order; the k-th is frame k. World +y is down on KITTI (camera axes x right,
 // y down, z forward, the world being frame 0's camera), so
 //   gravity_in_cam_k = R_k^T e_y.
+// "Exact" gravity (--noise_deg=0) is thus the ground-truth world's +y, i.e. frame 0's camera y
+// axis: it carries frame 0's own tilt from true vertical (about a degree on KITTI), the same for
+// every frame.
 // With --noise_deg = sigma > 0 the vector is tilted by Exp(w) with w = a e1 + b e2, a, b ~ N(0,
 // sigma^2) (radians), e1, e2 an orthonormal basis of the plane perpendicular to gravity: an IMU
 // whose pitch and roll each err by about sigma (the tilt angle |w| is Rayleigh, mean 1.25 sigma).
@@ -45,7 +48,7 @@ DEFINE_string(output_path, "", "Gravity CSV to write (required).");
 DEFINE_double(noise_deg,
               0.0,
               "IMU noise: sigma (deg) of the tilt added to each frame's gravity, per axis of the "
-              "plane perpendicular to it; 0 = exact gravity.");
+              "plane perpendicular to it; 0 = exact gravity (the poses' world +y).");
 DEFINE_uint64(seed, 1, "Seed of the noise.");
 
 namespace {

@@ -2,9 +2,8 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
-#include <stdexcept>
+#include <sstream>
 
 #include "trigrav/ba/three_view_covariance.h"
 
@@ -107,11 +106,9 @@ std::string TripletVerdict(const TripletResult& result) {
   return "trusted";
 }
 
-void WriteTripletCsv(const std::vector<TripletResult>& results,
-                     ThreeViewBundleAdjustmentOptions::RotationModel rotation_model,
-                     const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path);
+std::string FormatTripletCsv(const std::vector<TripletResult>& results,
+                             ThreeViewBundleAdjustmentOptions::RotationModel rotation_model) {
+  std::ostringstream out;
   out << std::setprecision(17);
   out << "# trigrav triplet_initializer: one row per triplet; columns:\n";
   for (const auto& [name, meaning] : kColumns) {
@@ -139,8 +136,7 @@ void WriteTripletCsv(const std::vector<TripletResult>& results,
     WriteCovariance(estimate.refinement.covariance, layout, &out);
     out << ',' << Quoted(estimate.message) << '\n';
   }
-  out.flush();
-  if (!out) throw std::runtime_error("error writing " + path);
+  return out.str();
 }
 
 }  // namespace trigrav::colmap_tools

@@ -25,12 +25,11 @@ struct TripletResult {
 // "unrefined", "no_covariance" that applies.
 std::string TripletVerdict(const TripletResult& result);
 
-// Writes the results, one row each, after '#' lines documenting every column (README.md, "The
-// triplet CSV"); the covariance columns follow the layout of `rotation_model`
-// (three_view_covariance.h). Throws std::runtime_error when the file cannot be written.
-void WriteTripletCsv(const std::vector<TripletResult>& results,
-                     ThreeViewBundleAdjustmentOptions::RotationModel rotation_model,
-                     const std::string& path);
+// The CSV text of the results, one row each, after '#' lines documenting every column (README.md,
+// "The triplet CSV"); the covariance columns follow the layout of `rotation_model`
+// (three_view_covariance.h).
+std::string FormatTripletCsv(const std::vector<TripletResult>& results,
+                             ThreeViewBundleAdjustmentOptions::RotationModel rotation_model);
 
 }  // namespace trigrav::colmap_tools
 

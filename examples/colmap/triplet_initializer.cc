@@ -14,15 +14,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "common/require_flag.h"
 #include "match_graph.h"
+#include "staged_file.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/colmap/database.h"
 #include "trigrav/colmap/gravity_csv.h"
@@ -164,9 +167,19 @@ int Run() {
   std::map<std::string, Eigen::Vector3d> gravity_of_image;
   for (std::size_t i = 0; i < names.size(); ++i) gravity_of_image[names[i]] = gravity_of_name[i];
 
+  // Every triplet image's camera, before the workers (Database::ReadImages checks that each
+  // image's camera row exists; this keeps the lookups below from throwing).
+  for (const auto& [id, points] : keypoints) {
+    const colmap::DatabaseImage& image = image_of_id.at(id);
+    if (camera_of_id.count(image.camera_id) == 0) {
+      throw std::runtime_error(FLAGS_database_path + ": image " + image.name + " has camera_id " +
+                               std::to_string(image.camera_id) + ", not among the cameras");
+    }
+  }
+
   std::vector<tools::TripletResult> results(triplets.size());
   std::vector<std::vector<tools::Track>> tracks(triplets.size());
-  trigrav::ParallelFor(triplets.size(), FLAGS_threads, [&](std::size_t i) {
+  const auto estimate_triplet = [&](std::size_t i) {
     tools::TripletResult& result = results[i];
     trigrav::ThreeViewObservations observations;
     for (int k = 0; k < 3; ++k) {
@@ -186,8 +199,23 @@ int Run() {
     triplet_options.robust.ransac.seed = FLAGS_seed + i;
     result.estimate = trigrav::InitializeAndRefine(observations, triplet_options);
     result.estimated = true;
+  };
+  // An exception must not leave a worker thread (std::terminate): the first one is kept and
+  // rethrown after the join.
+  std::exception_ptr worker_error;
+  std::mutex worker_error_mutex;
+  trigrav::ParallelFor(triplets.size(), FLAGS_threads, [&](std::size_t i) {
+    try {
+      estimate_triplet(i);
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(worker_error_mutex);
+      if (!worker_error) worker_error = std::current_exception();
+    }
   });
-  tools::WriteTripletCsv(results, options.bundle_adjustment.rotation_model, FLAGS_output_csv);
+  if (worker_error) std::rethrow_exception(worker_error);
+  // Committed after the model (or alone when there is none): a failure leaves no CSV.
+  tools::StagedFile csv(FLAGS_output_csv,
+                        tools::FormatTripletCsv(results, options.bundle_adjustment.rotation_model));
 
   int best = -1, num_success = 0, num_trusted = 0;
   for (std::size_t i = 0; i < results.size(); ++i) {
@@ -201,6 +229,7 @@ int Run() {
   std::cout << triplets.size() << " triplets (" << FLAGS_triplets << "): " << num_success
             << " estimated, " << num_trusted << " trusted; CSV " << FLAGS_output_csv << "\n";
   if (best < 0) {
+    csv.Commit();
     std::cerr << "error: no trusted triplet; no model written (reasons in " << FLAGS_output_csv
               << ")" << std::endl;
     return 1;
@@ -212,6 +241,7 @@ int Run() {
       tools::TripletModel(cameras, seed.images, seed_keypoints, tracks[best], seed.estimate);
   fs::create_directories(FLAGS_output_model_path);
   colmap::WriteModel(model, FLAGS_output_model_path, colmap::ModelFormat::kBinary);
+  csv.Commit();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::cout << "seed triplet " << seed.images[0].name << " " << seed.images[1].name << " "

@@ -409,6 +409,34 @@ TEST(NViewBundleAdjustmentTest, FailsWithoutAUsableGauge) {
   EXPECT_EQ(refined.points_in_world, input.points_in_world);
 }
 
+// Every linear solver gives a success or a clean failure, silently: the Schur preconditioner is
+// set only for ITERATIVE_SCHUR (Ceres' IsValid rejects SCHUR_JACOBI with CGNR, with a LOG(ERROR)
+// on stderr from Solve).
+TEST(NViewBundleAdjustmentTest, EveryLinearSolverSucceedsQuietly) {
+  NViewSceneOptions scene_options;
+  scene_options.num_images = 8;
+  scene_options.num_points = 100;
+  const NViewReconstruction truth = MakeNViewScene(scene_options, 41).truth;
+  const NViewReconstruction start = PerturbReconstruction(truth, 1.0, 0.05, 0.02, 141);
+  NViewReconstruction refined;
+  const NViewBundleAdjustmentSummary reference =
+      RefineWithGravity(start, {}, Options(RotationModel::kGravityPrior), &refined);
+  ASSERT_TRUE(reference.success) << reference.message;
+  for (const ceres::LinearSolverType type : {ceres::CGNR, ceres::ITERATIVE_SCHUR}) {
+    const std::string name = ceres::LinearSolverTypeToString(type);
+    NViewBundleAdjustmentOptions options = Options(RotationModel::kGravityPrior);
+    options.linear_solver_type = type;
+    std::string error;
+    EXPECT_TRUE(options.CeresSolverOptions().IsValid(&error)) << name << ": " << error;
+    ::testing::internal::CaptureStderr();
+    const NViewBundleAdjustmentSummary summary = RefineWithGravity(start, {}, options, &refined);
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "") << name;
+    ASSERT_TRUE(summary.success) << name << ": " << summary.message;
+    // The optimum of the default solver (SPARSE_SCHUR).
+    EXPECT_NEAR(summary.FinalCost(), reference.FinalCost(), 1e-4 * reference.FinalCost()) << name;
+  }
+}
+
 // Each bad input is rejected with std::invalid_argument naming the field.
 TEST(NViewBundleAdjustmentTest, RejectsBadInput) {
   const NViewReconstruction good = MakeNViewScene({}, 41).truth;

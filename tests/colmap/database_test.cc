@@ -204,6 +204,16 @@ TEST(Database, BadRowsAreNamed) {
        "keypoints of image 1: blob of 120 bytes, expected 36 values"},
       {[](TestDatabase* db) { db->Execute("UPDATE keypoints SET rows = -1 WHERE image_id = 1"); },
        [](const Database& db) { db.ReadKeypoints(1); }, "rows -1 out of range"},
+      {[](TestDatabase* db) {
+         std::vector<float> rows = {1, 2, 3, 4, 5, NAN};  // row 2's y
+         db->InsertWithBlob<float>(
+             "INSERT INTO keypoints (image_id, rows, cols, data) VALUES (?, 3, 2, ?)", {3}, rows);
+       },
+       [](const Database& db) { db.ReadKeypoints(3); },
+       "keypoints of image 3: row 2 (5.000000, nan) is not finite"},
+      {[](TestDatabase* db) { db->AddImage(4, "000003.png", 2); },
+       [](const Database& db) { db.ReadImages(); },
+       "image 4 (000003.png): camera_id 2 has no camera row"},
   };
   for (const Case& bad : cases) {
     const std::string path = MakeDatabase(ScratchFolder());

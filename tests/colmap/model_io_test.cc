@@ -221,6 +221,26 @@ TEST(ModelIo, ReadsTheFormatAskedFor) {
               ThrowsMessage<std::runtime_error>(HasSubstr("cameras.bin: no such file")));
 }
 
+// Writing one format removes the other's files: ReadModel(folder), which prefers .bin, reads the
+// model written last.
+TEST(ModelIo, WritingRemovesTheOtherFormat) {
+  const Reconstruction model = SyntheticModel();
+  Reconstruction renamed = model;
+  renamed.images.begin()->second.name = "renamed.png";
+  const std::string folder = ScratchFolder();
+  WriteModel(model, folder, ModelFormat::kBinary);
+  WriteModel(renamed, folder, ModelFormat::kText);
+  for (const char* file : {"/cameras.bin", "/images.bin", "/points3D.bin"}) {
+    EXPECT_FALSE(std::filesystem::exists(folder + file)) << file;
+  }
+  EXPECT_EQ(ReadModel(folder).images.begin()->second.name, "renamed.png");
+  WriteModel(model, folder, ModelFormat::kBinary);
+  for (const char* file : {"/cameras.txt", "/images.txt", "/points3D.txt"}) {
+    EXPECT_FALSE(std::filesystem::exists(folder + file)) << file;
+  }
+  EXPECT_EQ(ReadModel(folder).images.begin()->second.name, model.images.begin()->second.name);
+}
+
 TEST(ModelIo, MissingFilesAndFolders) {
   const std::string folder = ScratchFolder();
   EXPECT_THAT([&] { ReadModel(folder + "/nowhere"); },

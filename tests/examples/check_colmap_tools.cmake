@@ -7,8 +7,8 @@
 # 2. gravity_bundle_adjuster on a synthetic model with perturbed poses
 #    (write_synthetic_colmap_model): both rotation models, binary and text output, the covariance
 #    CSV; the cost decreases; the written model reads back (the tool runs on it).
-# 3. Bad input: a gravity CSV missing an image, NaN gravity, a missing model folder: non-zero exit,
-#    a message naming the problem, no output folder.
+# 3. Bad input: a gravity CSV missing an image, NaN gravity, a missing model folder, an unwritable
+#    covariance CSV: non-zero exit, a message naming the problem, no output folder.
 cmake_minimum_required(VERSION 3.21)
 include(${CMAKE_CURRENT_LIST_DIR}/script_checks.cmake)
 
@@ -82,6 +82,13 @@ endforeach()
 file(STRINGS "${WORK_DIR}/covariance.csv" covariance_rows REGEX "^frame[0-4]\\.png,[1-5],")
 list(LENGTH covariance_rows num_covariance_rows)
 expect("a covariance row per image (${num_covariance_rows})" num_covariance_rows EQUAL 5)
+expect("no temporary covariance file left" NOT EXISTS "${WORK_DIR}/covariance.csv.tmp")
+run(bad_csv ${ADJUSTER} --input_path=${model} --gravity_csv=${gravity}
+  --output_path=${WORK_DIR}/out_bad_csv --covariance_csv=${WORK_DIR}/no_such_folder/cov.csv)
+expect("an unwritable covariance CSV: exit 1" bad_csv_status EQUAL 1)
+expect_match("an unwritable covariance CSV: the file named" "${bad_csv_err}"
+  "error: cannot write .*no_such_folder/cov\\.csv\\.tmp; nothing written")
+expect("an unwritable covariance CSV: no model" NOT EXISTS "${WORK_DIR}/out_bad_csv")
 
 # 3. Bad input: nothing written.
 file(STRINGS "${gravity}" gravity_lines)

@@ -9,6 +9,7 @@
 
 #include <sqlite3.h>
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -45,6 +46,7 @@ class Statement {
     throw std::runtime_error(path_ + ": " + sqlite3_errmsg(db_));
   }
   std::int64_t Int(int column) const { return sqlite3_column_int64(statement_, column); }
+  bool IsNull(int column) const { return sqlite3_column_type(statement_, column) == SQLITE_NULL; }
   std::string Text(int column) const {
     const unsigned char* text = sqlite3_column_text(statement_, column);
     return text == nullptr ? std::string()
@@ -174,15 +176,23 @@ std::vector<ColmapCamera> Database::ReadCameras() const {
 }
 
 std::vector<DatabaseImage> Database::ReadImages() const {
-  Statement statement(impl_->db, "SELECT image_id, name, camera_id FROM images ORDER BY image_id",
+  // The last column is NULL when no camera row has the image's camera_id.
+  Statement statement(impl_->db,
+                      "SELECT images.image_id, images.name, images.camera_id, cameras.camera_id "
+                      "FROM images LEFT JOIN cameras ON images.camera_id = cameras.camera_id "
+                      "ORDER BY images.image_id",
                       impl_->path);
   std::vector<DatabaseImage> images;
   while (statement.Step()) {
     DatabaseImage image;
     image.image_id = CheckedId(statement.Int(0), impl_->path + ": image_id");
+    const std::string where = impl_->path + ": image " + std::to_string(image.image_id);
     image.name = statement.Text(1);
-    image.camera_id = CheckedId(
-        statement.Int(2), impl_->path + ": image " + std::to_string(image.image_id) + " camera_id");
+    image.camera_id = CheckedId(statement.Int(2), where + " camera_id");
+    if (statement.IsNull(3)) {
+      throw std::runtime_error(where + " (" + image.name + "): camera_id " +
+                               std::to_string(image.camera_id) + " has no camera row");
+    }
     images.push_back(image);
   }
   return images;
@@ -207,7 +217,12 @@ std::vector<Eigen::Vector2d> Database::ReadKeypoints(ImageId image_id) const {
   const std::vector<float> data = statement.Blob<float>(2, rows * cols, where);
   keypoints.reserve(static_cast<std::size_t>(rows));
   for (std::int64_t row = 0; row < rows; ++row) {
-    keypoints.emplace_back(data[row * cols], data[row * cols + 1]);
+    const float x = data[row * cols], y = data[row * cols + 1];
+    if (!std::isfinite(x) || !std::isfinite(y)) {
+      throw std::runtime_error(where + ": row " + std::to_string(row) + " (" + std::to_string(x) +
+                               ", " + std::to_string(y) + ") is not finite");
+    }
+    keypoints.emplace_back(x, y);
   }
   return keypoints;
 }

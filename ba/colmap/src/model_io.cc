@@ -3,7 +3,10 @@
 #include <sys/stat.h>
 
 #include <Eigen/Geometry>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <stdexcept>
 
 #include "file_io.h"
@@ -83,6 +86,17 @@ void WriteModel(const Reconstruction& reconstruction,
   internal::WriteFilesAtomically({{paths.cameras, contents.cameras},
                                   {paths.images, contents.images},
                                   {paths.points3D, contents.points3D}});
+  // The other format's files would be a stale model (ReadModel(folder) prefers .bin).
+  const internal::ModelFiles stale = ModelPaths(
+      folder, format == ModelFormat::kBinary ? ModelFormat::kText : ModelFormat::kBinary);
+  for (const std::string* path : {&stale.cameras, &stale.images, &stale.points3D}) {
+    if (internal::FileExists(*path) && std::remove(path->c_str()) != 0) {
+      throw std::runtime_error(*path +
+                               ": the model is written, but this stale file cannot be "
+                               "removed (" +
+                               std::strerror(errno) + ")");
+    }
+  }
 }
 
 }  // namespace colmap

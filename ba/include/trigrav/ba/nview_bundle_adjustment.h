@@ -30,8 +30,10 @@
 //  - The reference image's centre is constant; its yaw is constant (kYawOnly), or its rotation
 //    lives on the chart R_0 Exp(a e_x + b e_z) around its start R_0 (kGravityPrior: rotations about
 //    W's x and z axes only, so its pitch and roll follow all images' gravity while its rotation
-//    about gravity stays exactly that of R_0; fixing its whole rotation would tie the
-//    reconstruction's tilt to one image's IMU reading).
+//    about gravity stays that of R_0 on this chart, i.e. no rotation about W's y axis is applied
+//    to R_0; a yaw angle extracted from the result can still differ from R_0's once a or b is not
+//    zero. Fixing its whole rotation would tie the reconstruction's tilt to one image's IMU
+//    reading).
 //  - The scale image's centre keeps one coordinate in W (ceres::SubsetManifold): y or z, whichever
 //    component of its baseline to the reference is larger.
 //
@@ -97,7 +99,10 @@ struct NViewBundleAdjustmentConfig {
   // The image whose centre fixes the scale by one coordinate; -1: the image whose initial centre is
   // farthest from the reference image's. Must differ from reference_image.
   int scale_image = -1;
-  // Images whose pose (yaw or rotation, and centre) is held constant, on top of the gauge.
+  // Images whose pose (yaw or rotation, and centre) is held constant, on top of the gauge. Their
+  // centres are returned as given; their rotations too with kGravityPrior, while kYawOnly returns
+  // A_k^T R_y(yaw_k) W with the starting (best-fitting) yaw: the given rotation snapped to the
+  // image's gravity (the same for the reference image).
   std::vector<int> constant_images;
   // Keep every point constant (motion-only refinement).
   bool constant_points = false;
@@ -141,8 +146,10 @@ struct NViewBundleAdjustmentOptions {
   // Throws std::invalid_argument naming the first bad field (non-positive or non-finite scales and
   // sigmas, negative counts or tolerances, enum values out of range).
   void Check() const;
-  // The ceres::Solver::Options of NViewBundleAdjuster::Solve(): these fields, silent (logging_type
-  // SILENT, no progress on stdout).
+  // The ceres::Solver::Options of NViewBundleAdjuster::Solve(): these fields (preconditioner
+  // SCHUR_JACOBI with ITERATIVE_SCHUR, Ceres' default otherwise), silent (logging_type SILENT, no
+  // progress on stdout, trust region radius at most 1e7 as the three-view adjuster's). Solve()
+  // fails with Ceres' message when Solver::Options::IsValid rejects them.
   ceres::Solver::Options CeresSolverOptions() const;
 };
 

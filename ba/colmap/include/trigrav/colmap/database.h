@@ -46,10 +46,12 @@ class Database {
   // Every camera; a COLMAP model trigrav does not have, or a parameter blob of the wrong size,
   // throws std::runtime_error naming the camera id and the model.
   std::vector<ColmapCamera> ReadCameras() const;
+  // Every image; one whose camera_id has no camera row throws std::runtime_error naming the image.
   std::vector<DatabaseImage> ReadImages() const;
   // Keypoint positions of an image (pixels, COLMAP's convention; the first two columns of
   // COLMAP's 2-, 4- or 6-column keypoint rows). An image without keypoints gives an empty vector;
-  // an unknown image id or a malformed blob throws std::runtime_error.
+  // an unknown image id, a malformed blob or a non-finite position throws std::runtime_error
+  // naming the image (and the row).
   std::vector<Eigen::Vector2d> ReadKeypoints(ImageId image_id) const;
   // Every verified pair with at least one inlier match. A match index outside its image's keypoint
   // count throws std::runtime_error naming the pair.

@@ -23,8 +23,9 @@ Reconstruction ReadModel(const std::string& folder, ModelFormat format);
 
 // Writes `reconstruction` (which must pass Check(); std::invalid_argument otherwise) into
 // `folder`, which must exist. The three files are written under temporary names and renamed
-// into place only when all three are complete, so a failure leaves no half-written model.
-// Throws std::runtime_error on an I/O error.
+// into place only when all three are complete, so a failure leaves no half-written model. Then
+// the other format's three files, if in `folder`, are removed, so that ReadModel(folder) reads
+// this model. Throws std::runtime_error on an I/O error.
 void WriteModel(const Reconstruction& reconstruction,
                 const std::string& folder,
                 ModelFormat format);

@@ -179,6 +179,8 @@ void NViewBundleAdjustmentOptions::Check() const {
 ceres::Solver::Options NViewBundleAdjustmentOptions::CeresSolverOptions() const {
   ceres::Solver::Options solver_options;
   solver_options.linear_solver_type = linear_solver_type;
+  // Only there: Ceres 2.1's CGNR aborts on SCHUR_JACOBI (a CHECK that Solver::Options::IsValid
+  // does not anticipate); the other solvers keep Ceres' default.
   if (linear_solver_type == ceres::ITERATIVE_SCHUR) {
     solver_options.preconditioner_type = ceres::SCHUR_JACOBI;
   }

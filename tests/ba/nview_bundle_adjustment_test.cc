@@ -409,9 +409,10 @@ TEST(NViewBundleAdjustmentTest, FailsWithoutAUsableGauge) {
   EXPECT_EQ(refined.points_in_world, input.points_in_world);
 }
 
-// Every linear solver gives a success or a clean failure, silently: the Schur preconditioner is
-// set only for ITERATIVE_SCHUR (Ceres' IsValid rejects SCHUR_JACOBI with CGNR, with a LOG(ERROR)
-// on stderr from Solve).
+// CGNR and ITERATIVE_SCHUR reach the default solver's optimum, silently: the Schur preconditioner
+// is set only for ITERATIVE_SCHUR (with SCHUR_JACOBI, Ceres 2.1's IsValid accepts CGNR, whose
+// constructor then CHECK-fails: "Preconditioner = SCHUR_JACOBI. Congratulations, you found a bug
+// in Ceres", an abort).
 TEST(NViewBundleAdjustmentTest, EveryLinearSolverSucceedsQuietly) {
   NViewSceneOptions scene_options;
   scene_options.num_images = 8;

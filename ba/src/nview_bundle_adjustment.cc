@@ -14,7 +14,7 @@
 
 #include "best_fit_yaw.h"
 #include "robust_loss.h"
-#include "silent_solver_options.h"
+#include "shared_solver_options.h"
 #include "trigrav/factors/angle_manifold.h"
 #include "trigrav/factors/reprojection_factors.h"
 #include "trigrav/initializers/gravity.h"
@@ -167,29 +167,16 @@ void NViewBundleAdjustmentOptions::Check() const {
   if (loss != LossType::kNone && loss != LossType::kHuber && loss != LossType::kCauchy) {
     Fail(where, "unknown loss");
   }
-  // Ceres aborts (LOG(FATAL)) on an out-of-range solver type; its name round-trips only if valid.
-  ceres::LinearSolverType parsed;
-  if (!ceres::StringToLinearSolverType(ceres::LinearSolverTypeToString(linear_solver_type),
-                                       &parsed) ||
-      parsed != linear_solver_type) {
-    Fail(where, "unknown linear_solver_type");
-  }
+  if (!internal::IsLinearSolverType(linear_solver_type)) Fail(where, "unknown linear_solver_type");
 }
 
 ceres::Solver::Options NViewBundleAdjustmentOptions::CeresSolverOptions() const {
-  ceres::Solver::Options solver_options;
-  solver_options.linear_solver_type = linear_solver_type;
+  ceres::Solver::Options solver_options = internal::SharedSolverOptions(*this);
   // Only there: Ceres 2.1's CGNR aborts on SCHUR_JACOBI (a CHECK that Solver::Options::IsValid
   // does not anticipate); the other solvers keep Ceres' default.
   if (linear_solver_type == ceres::ITERATIVE_SCHUR) {
     solver_options.preconditioner_type = ceres::SCHUR_JACOBI;
   }
-  solver_options.max_num_iterations = max_num_iterations;
-  solver_options.num_threads = num_threads;
-  solver_options.function_tolerance = function_tolerance;
-  solver_options.gradient_tolerance = gradient_tolerance;
-  solver_options.parameter_tolerance = parameter_tolerance;
-  internal::MakeSolverSilent(&solver_options);
   return solver_options;
 }
 

@@ -54,13 +54,6 @@ class Loss {
   std::unique_ptr<ceres::LossFunction> loss_;
 };
 
-PixelResidual MakeResidual(const ThreeViewObservations& o, int k, int i, PixelResidual*) {
-  return PixelResidual{o.cameras[k], o.pixels[k][i]};
-}
-BearingResidual MakeResidual(const ThreeViewObservations& o, int k, int i, BearingResidual*) {
-  return BearingResidual(o.bearings[k][i]);
-}
-
 // Residual of one observation of a point in its camera's frame and its derivative d r / d x_cam,
 // by forward-mode automatic differentiation of the residual functor (Jets of 3: no allocation).
 // False if the observation cannot see the point or the result is not finite (Ceres then fails the
@@ -81,43 +74,81 @@ bool EvaluateByJets(const Residual& residual,
   return r->allFinite() && jacobian->allFinite();
 }
 
-// The focal lengths of a pinhole camera (pinhole = false for a distortion model or bearings), read
-// once per solve.
-struct PinholeFocal {
-  bool pinhole = false;
-  double fx = 0.0, fy = 0.0;
+// One view's observations of the problem's points, in the order of the adjuster's triplets, with
+// Evaluate(p, x_cam, &r, &dr/dx_cam) as EvaluateByJets.
+template <typename Residual>
+class ViewObservations;
+
+// Pixels: the camera once and the pixels packed (16 bytes per point, read once per evaluation).
+// The derivative in closed form where it is short (section 13.1): pinhole models,
+// u = fx X / Z + cx: du/dX = fx / Z, du/dZ = -fx X / Z^2 (v alike); distortion models by Jets.
+template <>
+class ViewObservations<PixelResidual> {
+ public:
+  ViewObservations(const ThreeViewObservations& observations,
+                   int view,
+                   const std::vector<int>& triplets)
+      : camera_(observations.cameras[view]),
+        pinhole_(camera_.IsPinhole()),
+        fx_(camera_.FocalX()),
+        fy_(camera_.FocalY()),
+        cx_(camera_.PrincipalPoint().x()),
+        cy_(camera_.PrincipalPoint().y()) {
+    pixels_.reserve(triplets.size());
+    for (const int i : triplets) pixels_.push_back(observations.pixels[view][i]);
+  }
+
+  bool Evaluate(std::size_t p,
+                const Eigen::Vector3d& x,
+                Eigen::Vector2d* r,
+                Eigen::Matrix<double, 2, 3>* jacobian) const {
+    if (!pinhole_) return EvaluateByJets(PixelResidual{camera_, pixels_[p]}, x, r, jacobian);
+    if (!(x.z() > 0.0)) return false;
+    // Camera::Project's arithmetic.
+    (*r)[0] = fx_ * x.x() / x.z() + cx_ - pixels_[p].x();
+    (*r)[1] = fy_ * x.y() / x.z() + cy_ - pixels_[p].y();
+    const double inv_z = 1.0 / x.z();
+    const double fx = fx_ * inv_z;
+    const double fy = fy_ * inv_z;
+    *jacobian << fx, 0.0, -fx * x.x() * inv_z, 0.0, fy, -fy * x.y() * inv_z;
+    return r->allFinite() && jacobian->allFinite();
+  }
+
+ private:
+  Camera camera_;
+  bool pinhole_;
+  double fx_, fy_, cx_, cy_;
+  std::vector<Eigen::Vector2d> pixels_;
 };
 
-// The same, with the derivative in closed form where it is short (section 13.1): pinhole models,
-// u = fx X / Z + cx: du/dX = fx / Z, du/dZ = -fx X / Z^2 (v alike); distortion models by Jets.
-bool EvaluateObservation(const PixelResidual& residual,
-                         const PinholeFocal& focal,
-                         const Eigen::Vector3d& x,
-                         Eigen::Vector2d* r,
-                         Eigen::Matrix<double, 2, 3>* jacobian) {
-  if (!focal.pinhole) return EvaluateByJets(residual, x, r, jacobian);
-  if (!residual(x.data(), r->data())) return false;
-  const double inv_z = 1.0 / x.z();
-  const double fx = focal.fx * inv_z;
-  const double fy = focal.fy * inv_z;
-  *jacobian << fx, 0.0, -fx * x.x() * inv_z, 0.0, fy, -fy * x.y() * inv_z;
-  return r->allFinite() && jacobian->allFinite();
-}
-
 // Bearings, r_i = K (e_i . x) / (b . x) with K = 180 / pi: d r_i / dx = (K e_i - r_i b) / (b . x).
-bool EvaluateObservation(const BearingResidual& residual,
-                         const PinholeFocal&,
-                         const Eigen::Vector3d& x,
-                         Eigen::Vector2d* r,
-                         Eigen::Matrix<double, 2, 3>* jacobian) {
-  if (!residual(x.data(), r->data())) return false;
-  const Eigen::Matrix3d& frame = residual.frame();
-  const double inv_along = 1.0 / frame.row(2).dot(x);
-  for (int i = 0; i < 2; ++i) {
-    jacobian->row(i) = (kRadiansToDegrees * frame.row(i) - (*r)[i] * frame.row(2)) * inv_along;
+template <>
+class ViewObservations<BearingResidual> {
+ public:
+  ViewObservations(const ThreeViewObservations& observations,
+                   int view,
+                   const std::vector<int>& triplets) {
+    residuals_.reserve(triplets.size());
+    for (const int i : triplets) residuals_.emplace_back(observations.bearings[view][i]);
   }
-  return r->allFinite() && jacobian->allFinite();
-}
+
+  bool Evaluate(std::size_t p,
+                const Eigen::Vector3d& x,
+                Eigen::Vector2d* r,
+                Eigen::Matrix<double, 2, 3>* jacobian) const {
+    const BearingResidual& residual = residuals_[p];
+    if (!residual(x.data(), r->data())) return false;
+    const Eigen::Matrix3d& frame = residual.frame();
+    const double inv_along = 1.0 / frame.row(2).dot(x);
+    for (int i = 0; i < 2; ++i) {
+      jacobian->row(i) = (kRadiansToDegrees * frame.row(i) - (*r)[i] * frame.row(2)) * inv_along;
+    }
+    return r->allFinite() && jacobian->allFinite();
+  }
+
+ private:
+  std::vector<BearingResidual> residuals_;
+};
 
 Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
   Eigen::Matrix3d m;
@@ -143,19 +174,15 @@ class Engine {
         options_(adjuster->options()),
         solver_options_(options_.CeresSolverOptions()),
         constant_points_(adjuster->config().constant_points),
-        loss_(options_.loss, options_.LossScale(adjuster->observations())) {
+        loss_(options_.loss, options_.LossScale(adjuster->observations())),
+        views_{
+            ViewObservations<Residual>(adjuster->observations(), 0, adjuster->triplet_indices()),
+            ViewObservations<Residual>(adjuster->observations(), 1, adjuster->triplet_indices()),
+            ViewObservations<Residual>(adjuster->observations(), 2, adjuster->triplet_indices())} {
     const ThreeViewObservations& observations = adjuster->observations();
     const std::vector<int>& triplets = adjuster->triplet_indices();
     for (int k = 0; k < 3; ++k) {
       alignment_[k] = GravityAlignmentFromGravity(observations.gravity_in_cam[k]);
-      const Camera& camera = observations.cameras[k];
-      if (!observations.HasBearings() && camera.IsPinhole()) {
-        focal_[k] = {true, camera.FocalX(), camera.FocalY()};
-      }
-      residuals_[k].reserve(triplets.size());
-      for (const int i : triplets) {
-        residuals_[k].push_back(MakeResidual(observations, k, i, static_cast<Residual*>(nullptr)));
-      }
     }
     for (int j = 0; j < 2; ++j) {
       gravity_[j] = observations.gravity_in_cam[j + 1].normalized();
@@ -252,10 +279,9 @@ class Engine {
   const ceres::Solver::Options solver_options_;
   const bool constant_points_;
   const Loss loss_;
+  const ViewObservations<Residual> views_[3];
   Eigen::Matrix3d alignment_[3];
   Eigen::Vector3d gravity_[2];  // unit gravity in cameras 2, 3: the yaw's axis
-  PinholeFocal focal_[3];
-  std::vector<Residual> residuals_[3];
   std::unique_ptr<ceres::CostFunction> prior_[2];
   double prior_weight_ = 0.0;
   const ceres::QuaternionManifold quaternion_manifold_;
@@ -327,7 +353,7 @@ bool Engine<Residual, kRot>::Evaluate(const Pose& pose,
     const Eigen::Vector3d& point = points[p];
     PointBlocks& blocks = out->points[p];
     // View 1: the reference camera sees the point in its own frame.
-    if (!EvaluateObservation(residuals_[0][p], focal_[0], point, &r, &jr)) return false;
+    if (!views_[0].Evaluate(p, point, &r, &jr)) return false;
     double weight = loss_.Apply(r.squaredNorm(), constant_points_ ? &out->fixed_cost : &out->cost);
     jr *= weight;
     r *= weight;
@@ -335,7 +361,7 @@ bool Engine<Residual, kRot>::Evaluate(const Pose& pose,
     blocks.gp.noalias() = jr.transpose() * r;
     for (int j = 0; j < 2; ++j) {
       const Eigen::Vector3d x_cam = rotation[j] * (point - center[j]);
-      if (!EvaluateObservation(residuals_[j + 1][p], focal_[j + 1], x_cam, &r, &jr)) return false;
+      if (!views_[j + 1].Evaluate(p, x_cam, &r, &jr)) return false;
       weight = loss_.Apply(r.squaredNorm(), &out->cost);
       jr *= weight;
       r *= weight;

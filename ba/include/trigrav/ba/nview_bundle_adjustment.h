@@ -58,6 +58,7 @@
 #include <string>
 #include <vector>
 
+#include "trigrav/ba/ceres_solve_report.h"
 #include "trigrav/ba/three_view_bundle_adjustment.h"
 #include "trigrav/initializers/camera_model.h"
 #include "trigrav/initializers/camera_pose.h"
@@ -153,7 +154,8 @@ struct NViewBundleAdjustmentOptions {
   ceres::Solver::Options CeresSolverOptions() const;
 };
 
-struct NViewBundleAdjustmentSummary {
+// What an N-view bundle adjustment did; the Ceres report and its accessors in CeresSolveReport.
+struct NViewBundleAdjustmentSummary : CeresSolveReport {
   bool success = false;  // Ceres returned a usable solution and every refined value is finite
   // Why not, when !success (the adjuster's parameters are then restored to the start); when
   // success, empty or a note (e.g. why the covariances are empty).
@@ -180,14 +182,6 @@ struct NViewBundleAdjustmentSummary {
   std::vector<Eigen::MatrixXd> covariances;
   double solve_time_s = 0.0;
   double covariance_time_s = 0.0;
-  ceres::Solver::Summary ceres_summary;
-
-  double InitialCost() const { return ceres_summary.initial_cost; }
-  double FinalCost() const { return ceres_summary.final_cost; }
-  int Iterations() const {
-    return ceres_summary.num_successful_steps + ceres_summary.num_unsuccessful_steps;
-  }
-  std::string BriefReport() const { return ceres_summary.BriefReport(); }
 };
 
 // Owns the ceres::Problem of an N-view refinement.

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "trigrav/ba/ceres_solve_report.h"
 #include "trigrav/initializers/camera_pose.h"
 #include "trigrav/initializers/three_view_error.h"
 #include "trigrav/initializers/three_view_observations.h"
@@ -93,37 +94,26 @@ struct ThreeViewBundleAdjustmentOptions {
   double LossScale(const ThreeViewObservations& observations) const;
   // The ceres::Solver::Options of Solve(): linear solver, iterations, threads and tolerances from
   // these fields; silent, with the trust region radius capped at 1e7 (the cap keeps Ceres' dense
-  // Cholesky from failing, and printing, on distant points).
+  // Cholesky from failing, and printing, on distant points) and starting there.
   ceres::Solver::Options CeresSolverOptions() const;
   double ObservationSigma(const ThreeViewObservations& observations) const;
 };
 
 // The one refinement summary: what a bundle adjustment did (the refined pose and points are held by
-// the adjuster, and returned by RefineThreeViewPose).
-struct ThreeViewBundleAdjustmentSummary {
+// the adjuster, and returned by RefineThreeViewPose). Of ceres_summary (CeresSolveReport) the
+// dedicated engine fills, with Ceres' meaning: initial_cost, final_cost, fixed_cost,
+// num_successful_steps (iteration 0 included, as Ceres), num_unsuccessful_steps, termination_type,
+// message, iterations (iteration, cost, cost_change, gradient_max_norm, step_norm,
+// relative_decrease, trust_region_radius, step_is_valid, step_is_successful), minimizer and linear
+// solver types, problem sizes (num_parameter_blocks, num_parameters, num_effective_parameters,
+// num_residual_blocks, num_residuals) and total_time_in_seconds; the rest keep their defaults.
+struct ThreeViewBundleAdjustmentSummary : CeresSolveReport {
   bool success = false;  // the engine ran and returned a usable (finite) solution
   // Why not, when !success; when success, empty or a note (e.g. why the covariance is empty).
   std::string message;
   int num_points = 0;  // triplets in the problem
   int num_residual_blocks = 0;
   double solve_time_s = 0.0;
-  // The full report of ceres::Solve (costs 1/2 sum rho(|r|^2), steps, termination, timings). The
-  // dedicated engine fills, with Ceres' meaning: initial_cost, final_cost, fixed_cost,
-  // num_successful_steps (iteration 0 included, as Ceres), num_unsuccessful_steps,
-  // termination_type, message, iterations (iteration, cost, cost_change, gradient_max_norm,
-  // step_norm, relative_decrease, trust_region_radius, step_is_valid, step_is_successful),
-  // minimizer and linear solver types, problem sizes (num_parameter_blocks, num_parameters,
-  // num_effective_parameters, num_residual_blocks, num_residuals) and total_time_in_seconds; the
-  // rest keep their defaults.
-  ceres::Solver::Summary ceres_summary;
-
-  double InitialCost() const { return ceres_summary.initial_cost; }
-  double FinalCost() const { return ceres_summary.final_cost; }
-  // Successful + unsuccessful steps.
-  int Iterations() const {
-    return ceres_summary.num_successful_steps + ceres_summary.num_unsuccessful_steps;
-  }
-  std::string BriefReport() const { return ceres_summary.BriefReport(); }
 };
 
 // Owns the ceres::Problem of a three-view refinement. Usage:

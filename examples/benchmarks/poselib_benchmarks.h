@@ -26,8 +26,9 @@ void RegisterPoseLibSolverBenchmarks();
 //   BM_PoseLib/estimate_relative_pose/defaults/<n>           the same with PoseLib's defaults
 //   BM_PoseLib/refine_relpose/<n>                            PoseLib's Levenberg-Marquardt
 //                                                            refinement of pair (1,2)'s inliers
-// Counters as BM_RobustEstimateIssueScenes': rot_deg, trans_deg (medians over the first pass, views
-// 2 and 3 pooled, a failure counted as 180 deg), iterations (median per pair), and inliers.
+// Counters, from one pass over all the scenes before the timing: rot_deg, trans_deg (medians,
+// views 2 and 3 pooled as in BM_RobustEstimateIssueScenes, a failure counted as 180 deg; pair
+// (1,2) alone for refine_relpose), iterations (median per pair), and inliers.
 void RegisterPoseLibRobustBenchmarks();
 
 }  // namespace trigrav::benchmarks

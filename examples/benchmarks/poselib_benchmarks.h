@@ -12,8 +12,8 @@ namespace trigrav::benchmarks {
 //                                                  of the gravity-aligned rays (BM_Solver/3pt's)
 //   BM_Peer/poselib_upright_3pt_gravity_two_pairs  its gravity wrapper on the raw rays and each
 //                                                  camera's gravity (BM_Solver/3pt-gravity's)
-//   BM_Peer/poselib_5pt                            relpose_5pt (poses) on pair (1,2)
-//                                                  (BM_Solver/5pt's)
+//   BM_Peer/poselib_5pt                            relpose_5pt (poses) on pair (1,2) of
+//                                                  BM_Solver/5pt's scenes, as unit bearings
 // Counter truth_found: the share of scenes with the true pose (1e-6 deg) among the solutions of
 // every pair.
 void RegisterPoseLibSolverBenchmarks();

@@ -11,6 +11,8 @@
 //    refinement with one re-classification round): RANSAC only ("raw"), refined by the Ceres
 //    engine and by the dedicated one; counters are per-call medians of the stages (ms,
 //    ThreeViewEstimateTimings) and of the inliers and refinement runs.
+// Built with PoseLib, BM_PoseLib/... times its two-pair estimate_relative_pose and its refinement
+// on the same scenes (poselib_benchmarks.h).
 //
 //   robust_benchmark
 //   robust_benchmark --benchmark_filter=InitializeAndRefine --benchmark_repetitions=5
@@ -18,11 +20,12 @@
 
 #include <benchmark/benchmark.h>
 
-#include <random>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "issue_scenes.h"
+#include "poselib_benchmarks.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/evaluation/pooled_errors.h"
 #include "trigrav/evaluation/pose_errors.h"
@@ -39,22 +42,7 @@ const std::vector<trigrav::SyntheticScene>& Scenes() {
   return scenes;
 }
 
-// 20 scenes from seed 2026 of `num_points` (375 or 875) triplets, 1 px noise and 20 % outliers.
-const std::vector<trigrav::SyntheticScene>& IssueScenes(int num_points) {
-  static std::vector<std::vector<trigrav::SyntheticScene>> cache(2);
-  std::vector<trigrav::SyntheticScene>& scenes = cache[num_points > 500 ? 1 : 0];
-  if (scenes.empty()) {
-    trigrav::SyntheticSceneOptions options;
-    options.num_points = num_points;
-    options.pixel_noise_px = 1.0;
-    options.outlier_ratio = 0.2;
-    std::mt19937_64 rng(trigrav::kRobustBenchmarkSeed);
-    for (int i = 0; i < trigrav::kRobustBenchmarkScenes; ++i) {
-      scenes.push_back(trigrav::GenerateSyntheticScene(options, &rng));
-    }
-  }
-  return scenes;
-}
+using trigrav::benchmarks::IssueScenes;
 
 // Times EstimateThreeViewPoseRobust over the scenes in turn at the inlier threshold.
 void TimeRobustEstimate(benchmark::State& state,
@@ -96,7 +84,8 @@ void BM_RobustEstimate(benchmark::State& state, trigrav::InitialSolver solver) {
 
 void BM_RobustEstimateIssueScenes(benchmark::State& state) {
   TimeRobustEstimate(state, IssueScenes(static_cast<int>(state.range(0))),
-                     trigrav::InitialSolver::kTrifocal3pt, 2.0);
+                     trigrav::InitialSolver::kTrifocal3pt,
+                     trigrav::benchmarks::kIssueScenesThresholdPx);
 }
 
 BENCHMARK(BM_RobustEstimateIssueScenes)
@@ -167,6 +156,9 @@ int main(int argc, char** argv) {
         ->Unit(benchmark::kMillisecond)
         ->MinTime(1.0);
   }
+#ifdef TRIGRAV_WITH_POSELIB
+  trigrav::benchmarks::RegisterPoseLibRobustBenchmarks();
+#endif
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

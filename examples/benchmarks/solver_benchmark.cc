@@ -12,7 +12,10 @@
 // truth (two-view solvers, whose solutions are not ranked: with the truth among the solutions).
 // Built with OpenGV (examples/peers/), BM_Peer/<name> times its five-point solvers on the same kind
 // of scenes; their counter "truth_found" is the fraction of scenes with the true essential matrix
-// among the solutions (they return essential matrices, not poses).
+// among the solutions (they return essential matrices, not poses). Built with PoseLib,
+// BM_Peer/poselib_<solver> times its upright 3-point solver on the pairs (1,2) and (1,3) of the
+// same scenes as BM_Solver/3pt (and its gravity wrapper on BM_Solver/3pt-gravity's) and its
+// five-point solver on BM_Solver/5pt's pair (poselib_benchmarks.h).
 //
 //   solver_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 
@@ -20,7 +23,6 @@
 
 #include <algorithm>
 #include <array>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -28,11 +30,12 @@
 #include "peer_estimators.h"
 #endif
 
+#include "poselib_benchmarks.h"
+#include "solver_benchmark_scenes.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/synthetic_scene.h"
 #include "trigrav/initializers/essential_5pt.h"
 #include "trigrav/initializers/essential_8pt.h"
-#include "trigrav/initializers/gravity.h"
 #include "trigrav/initializers/initial_solver.h"
 #include "trigrav/initializers/trifocal_3pt.h"
 #include "trigrav/initializers/trifocal_4pt.h"
@@ -42,52 +45,11 @@ namespace {
 
 using trigrav::ThreeViewPose;
 
-// A scene's rays in gravity-aligned frames and its ground truth in the same frames.
-struct AlignedProblem {
-  std::vector<Eigen::Vector3d> x1, x2, x3;
-  ThreeViewPose ground_truth;
-};
-
-// The same scene as a gravity overload sees it: raw rays, each camera's gravity, the original
-// frames' ground truth.
-struct RawProblem {
-  std::array<std::vector<Eigen::Vector3d>, 3> rays;
-  std::array<Eigen::Vector3d, 3> gravity_in_cam;
-  ThreeViewPose ground_truth;
-};
-
-std::vector<trigrav::SyntheticScene> MakeScenes(int num_points, int count) {
-  std::mt19937_64 rng(2026);
-  trigrav::SyntheticSceneOptions options;
-  options.num_points = num_points;
-  std::vector<trigrav::SyntheticScene> scenes;
-  for (int i = 0; i < count; ++i) scenes.push_back(trigrav::GenerateSyntheticScene(options, &rng));
-  return scenes;
-}
-
-std::vector<AlignedProblem> MakeProblems(int num_points, int count) {
-  std::vector<AlignedProblem> problems;
-  for (const trigrav::SyntheticScene& scene : MakeScenes(num_points, count)) {
-    const auto& align = scene.gravity_alignment_true;
-    AlignedProblem problem;
-    problem.x1 = trigrav::AlignRays(align[0], scene.rays[0]);
-    problem.x2 = trigrav::AlignRays(align[1], scene.rays[1]);
-    problem.x3 = trigrav::AlignRays(align[2], scene.rays[2]);
-    // Aligned ground truth: R = A_k R~ A_1^T, t = A_k t~ (the inverse of UnalignPose).
-    problem.ground_truth = trigrav::UnalignThreeViewPose(
-        scene.ground_truth, align[0].transpose(), align[1].transpose(), align[2].transpose());
-    problems.push_back(problem);
-  }
-  return problems;
-}
-
-std::vector<RawProblem> MakeRawProblems(int num_points, int count) {
-  std::vector<RawProblem> problems;
-  for (const trigrav::SyntheticScene& scene : MakeScenes(num_points, count)) {
-    problems.push_back({scene.rays, scene.gravity_in_cam_measured, scene.ground_truth});
-  }
-  return problems;
-}
+using trigrav::benchmarks::AlignedProblem;
+using trigrav::benchmarks::MakeProblems;
+using trigrav::benchmarks::MakeRawProblems;
+using trigrav::benchmarks::MakeScenes;
+using trigrav::benchmarks::RawProblem;
 
 // Runs `solve` over the problem pool; reports how often the first solution is the truth.
 template <typename Solver>
@@ -292,6 +254,9 @@ int main(int argc, char** argv) {
   RegisterSolverBenchmarks();
 #ifdef TRIGRAV_WITH_PEERS
   RegisterPeerBenchmarks();
+#endif
+#ifdef TRIGRAV_WITH_POSELIB
+  trigrav::benchmarks::RegisterPoseLibSolverBenchmarks();
 #endif
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

@@ -91,9 +91,7 @@ class ViewObservations<PixelResidual> {
       : camera_(observations.cameras[view]),
         pinhole_(camera_.IsPinhole()),
         fx_(camera_.FocalX()),
-        fy_(camera_.FocalY()),
-        cx_(camera_.PrincipalPoint().x()),
-        cy_(camera_.PrincipalPoint().y()) {
+        fy_(camera_.FocalY()) {
     pixels_.reserve(triplets.size());
     for (const int i : triplets) pixels_.push_back(observations.pixels[view][i]);
   }
@@ -103,10 +101,8 @@ class ViewObservations<PixelResidual> {
                 Eigen::Vector2d* r,
                 Eigen::Matrix<double, 2, 3>* jacobian) const {
     if (!pinhole_) return EvaluateByJets(PixelResidual{camera_, pixels_[p]}, x, r, jacobian);
-    if (!(x.z() > 0.0)) return false;
-    // Camera::Project's arithmetic.
-    (*r)[0] = fx_ * x.x() / x.z() + cx_ - pixels_[p].x();
-    (*r)[1] = fy_ * x.y() / x.z() + cy_ - pixels_[p].y();
+    if (!camera_.Project(x.data(), r->data())) return false;
+    *r -= pixels_[p];
     const double inv_z = 1.0 / x.z();
     const double fx = fx_ * inv_z;
     const double fy = fy_ * inv_z;
@@ -117,7 +113,7 @@ class ViewObservations<PixelResidual> {
  private:
   Camera camera_;
   bool pinhole_;
-  double fx_, fy_, cx_, cy_;
+  double fx_, fy_;
   std::vector<Eigen::Vector2d> pixels_;
 };
 

@@ -112,11 +112,6 @@ double Camera::FocalX() const { return params[internal::ParamLayout(model).fx]; 
 
 double Camera::FocalY() const { return params[internal::ParamLayout(model).fy]; }
 
-Eigen::Vector2d Camera::PrincipalPoint() const {
-  const internal::CameraParamLayout layout = internal::ParamLayout(model);
-  return {params[layout.cx], params[layout.cy]};
-}
-
 Eigen::Vector2d Camera::Project(const Eigen::Vector3d& point_in_cam) const {
   Eigen::Vector2d pixel;
   if (!Project(point_in_cam.data(), pixel.data())) {

@@ -102,7 +102,6 @@ struct Camera {
 
   double FocalX() const;
   double FocalY() const;
-  Eigen::Vector2d PrincipalPoint() const;  // (cx, cy), pixels
 
   // Pixel of a point in the camera frame (templated for Ceres' automatic differentiation). Returns
   // false for a point not in front of the camera (Z <= 0); the pixel is then not written.

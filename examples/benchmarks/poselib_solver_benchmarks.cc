@@ -29,6 +29,14 @@ bool TruthAmong(const CameraPose& truth, const poselib::CameraPoseVector& soluti
   return false;
 }
 
+// Whether both pairs' true poses are among their solutions.
+bool TruthAmongBothPairs(const ThreeViewPose& truth,
+                         const poselib::CameraPoseVector& solutions12,
+                         const poselib::CameraPoseVector& solutions13) {
+  return TruthAmong(truth.cam2_from_cam1, solutions12) &&
+         TruthAmong(truth.cam3_from_cam1, solutions13);
+}
+
 // Times solve(i, &solutions12, &solutions13) over problems 0..count-1 in turn; truth_found(i, ...)
 // says whether problem i's truth is among both pairs' solutions.
 template <typename Solve, typename TruthFound>
@@ -63,8 +71,7 @@ void BM_Upright3ptTwoPairs(benchmark::State& state) {
       },
       [&](std::size_t i, const poselib::CameraPoseVector& s12,
           const poselib::CameraPoseVector& s13) {
-        const ThreeViewPose& truth = problems[i].ground_truth;
-        return TruthAmong(truth.cam2_from_cam1, s12) && TruthAmong(truth.cam3_from_cam1, s13);
+        return TruthAmongBothPairs(problems[i].ground_truth, s12, s13);
       });
 }
 
@@ -80,8 +87,7 @@ void BM_Upright3ptGravityTwoPairs(benchmark::State& state) {
       },
       [&](std::size_t i, const poselib::CameraPoseVector& s12,
           const poselib::CameraPoseVector& s13) {
-        const ThreeViewPose& truth = problems[i].ground_truth;
-        return TruthAmong(truth.cam2_from_cam1, s12) && TruthAmong(truth.cam3_from_cam1, s13);
+        return TruthAmongBothPairs(problems[i].ground_truth, s12, s13);
       });
 }
 

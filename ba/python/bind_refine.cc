@@ -29,7 +29,9 @@ void BindBundleAdjustmentOptions(py::module_& m) {
   py::enum_<BundleOptions::Engine>(options.cls(), "Engine")
       .value("CERES", BundleOptions::Engine::kCeres, "ceres::Solve on the adjuster's problem")
       .value("DEDICATED", BundleOptions::Engine::kDedicated,
-             "trigrav's own Levenberg-Marquardt with the points eliminated, same optimum");
+             "trigrav's own Levenberg-Marquardt with the points eliminated, same optimum")
+      .value("CERES_POINTS_ELIMINATED", BundleOptions::Engine::kCeresPointsEliminated,
+             "ceres::Solve on the pose blocks, each point eliminated by variable projection");
   py::enum_<BundleOptions::RotationModel>(options.cls(), "RotationModel")
       .value("YAW_ONLY", BundleOptions::RotationModel::kYawOnly,
              "pitch and roll as the gravity says; one yaw per camera")

@@ -6,15 +6,20 @@
 #include <ceres/sphere_manifold.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
+#include <type_traits>
+#include <utility>
 
 #include "best_fit_yaw.h"
 #include "robust_loss.h"
 #include "shared_solver_options.h"
 #include "three_view_lm_solver.h"
 #include "trigrav/factors/angle_manifold.h"
+#include "trigrav/factors/eliminated_point_reprojection_error.h"
 #include "trigrav/factors/reprojection_factors.h"
 #include "trigrav/initializers/gravity.h"
 #include "trigrav/initializers/three_view_error.h"
@@ -35,7 +40,38 @@ ceres::CostFunction* MakeFactor(bool yaw_only,
              : ReprojectionError<Residual>::Create(residual);
 }
 
+constexpr std::pair<ThreeViewBundleAdjustmentOptions::Engine, const char*> kEngineNames[] = {
+    {ThreeViewBundleAdjustmentOptions::Engine::kCeres, "ceres"},
+    {ThreeViewBundleAdjustmentOptions::Engine::kDedicated, "dedicated"},
+    {ThreeViewBundleAdjustmentOptions::Engine::kCeresPointsEliminated, "ceres_points_eliminated"}};
+
 }  // namespace
+
+const char* EngineName(ThreeViewBundleAdjustmentOptions::Engine engine) {
+  for (const auto& [value, name] : kEngineNames) {
+    if (value == engine) return name;
+  }
+  throw std::invalid_argument("trigrav: EngineName: unknown engine");
+}
+
+bool ParseEngine(const std::string& name, ThreeViewBundleAdjustmentOptions::Engine* engine) {
+  for (const auto& [value, known] : kEngineNames) {
+    if (name == known) {
+      *engine = value;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string EngineNames() {
+  std::string names;
+  const int n = static_cast<int>(std::size(kEngineNames));
+  for (int i = 0; i < n; ++i) {
+    names += std::string(i == 0 ? "" : i + 1 == n ? " or " : ", ") + kEngineNames[i].second;
+  }
+  return names;
+}
 
 ThreeViewBundleAdjustmentConfig ThreeViewBundleAdjustmentConfig::FromInlierMask(
     const std::vector<char>& inliers) {
@@ -64,7 +100,9 @@ void ThreeViewBundleAdjustmentOptions::Check() const {
   require(function_tolerance >= 0.0, "function_tolerance must be >= 0");
   require(gradient_tolerance >= 0.0, "gradient_tolerance must be >= 0");
   require(parameter_tolerance >= 0.0, "parameter_tolerance must be >= 0");
-  require(engine == Engine::kCeres || engine == Engine::kDedicated, "unknown engine");
+  require(std::any_of(std::begin(kEngineNames), std::end(kEngineNames),
+                      [this](const auto& known) { return known.first == engine; }),
+          "unknown engine");
   require(
       rotation_model == RotationModel::kYawOnly || rotation_model == RotationModel::kGravityPrior,
       "unknown rotation_model");
@@ -248,6 +286,12 @@ void ThreeViewBundleAdjuster::BuildCeresProblem() {
     }
     if (config_.constant_points) problem_->SetParameterBlockConstant(point);
   }
+  AddPoseManifoldsAndPriors(problem_.get());
+}
+
+void ThreeViewBundleAdjuster::AddPoseManifoldsAndPriors(ceres::Problem* problem) {
+  const bool yaw_only =
+      options_.rotation_model == ThreeViewBundleAdjustmentOptions::RotationModel::kYawOnly;
   if (!yaw_only) {
     const double sigma_rad = options_.gravity_sigma_deg * kDegToRad;
     // Observation residuals are in pixels (degrees for bearings), the prior's in radians:
@@ -255,21 +299,58 @@ void ThreeViewBundleAdjuster::BuildCeresProblem() {
     const double ratio = options_.ObservationSigma(observations_) / sigma_rad;
     const double weight = ratio * ratio;
     for (int j = 0; j < 2; ++j) {
-      problem_->AddResidualBlock(GravityPriorError::Create(observations_.gravity_in_cam[0],
-                                                           observations_.gravity_in_cam[j + 1]),
-                                 new ceres::ScaledLoss(nullptr, weight, ceres::TAKE_OWNERSHIP),
-                                 quaternion_[j]);
+      problem->AddResidualBlock(GravityPriorError::Create(observations_.gravity_in_cam[0],
+                                                          observations_.gravity_in_cam[j + 1]),
+                                new ceres::ScaledLoss(nullptr, weight, ceres::TAKE_OWNERSHIP),
+                                quaternion_[j]);
     }
   }
   for (int j = 0; j < 2; ++j) {
     if (yaw_only) {
-      problem_->SetManifold(&yaw_[j], CreateYawManifold());
+      problem->SetManifold(&yaw_[j], CreateYawManifold());
     } else {
-      problem_->SetManifold(quaternion_[j], new ceres::QuaternionManifold);
+      problem->SetManifold(quaternion_[j], new ceres::QuaternionManifold);
     }
   }
   // Gauge: camera 1 is not in the problem; |C_2| = 1.
-  problem_->SetManifold(center_[0], new ceres::SphereManifold<3>);
+  problem->SetManifold(center_[0], new ceres::SphereManifold<3>);
+}
+
+template <typename Residual>
+void ThreeViewBundleAdjuster::SolveWithEliminatedPoints(const ceres::Solver::Options& options,
+                                                        ceres::Solver::Summary* summary) {
+  const bool yaw_only =
+      options_.rotation_model == ThreeViewBundleAdjustmentOptions::RotationModel::kYawOnly;
+  const std::unique_ptr<ceres::LossFunction> loss(
+      internal::MakeLoss(options_.loss, options_.LossScale(observations_)));
+  ceres::Problem::Options problem_options;
+  problem_options.disable_all_safety_checks = true;
+  ceres::Problem problem(problem_options);
+  const std::array<Eigen::Matrix3d, 3> alignments = {alignment_[0], alignment_[1], alignment_[2]};
+  double* blocks[4] = {RotationBlock(2), center_[0], RotationBlock(3), center_[1]};
+  for (std::size_t p = 0; p < points_.size(); ++p) {
+    const int i = used_triplets_[p];
+    typename EliminatedPointReprojectionError<Residual>::Observations triplet;
+    for (int k = 0; k < 3; ++k) {
+      if constexpr (std::is_same_v<Residual, BearingResidual>) {
+        triplet[k] = BearingResidual(observations_.bearings[k][i]);
+      } else {
+        triplet[k] = PixelResidual{observations_.cameras[k], observations_.pixels[k][i]};
+      }
+    }
+    double* point = points_[p].data();
+    problem.AddResidualBlock(
+        yaw_only ? EliminatedPointReprojectionError<Residual>::CreateYawOnly(triplet, alignments,
+                                                                             loss.get(), point)
+                 : EliminatedPointReprojectionError<Residual>::CreateWithQuaternions(
+                       triplet, loss.get(), point),
+        nullptr, blocks, 4);
+  }
+  AddPoseManifoldsAndPriors(&problem);
+  ceres::Solver::Options reduced_options = options;
+  // Seven (eleven) unknowns: the dense normal equations, whatever linear_solver_type says.
+  reduced_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  ceres::Solve(reduced_options, &problem, summary);  // leaves points_ at the solution's
 }
 
 void ThreeViewBundleAdjuster::SetEliminationOrdering(ceres::Solver::Options* solver_options) {
@@ -379,7 +460,15 @@ ThreeViewBundleAdjustmentSummary ThreeViewBundleAdjuster::Solve() {
   const auto start = std::chrono::steady_clock::now();
   if (options_.engine == ThreeViewBundleAdjustmentOptions::Engine::kDedicated) {
     internal::SolveThreeViewLm(this, &summary);
+  } else if (options_.engine == ThreeViewBundleAdjustmentOptions::Engine::kCeresPointsEliminated &&
+             !config_.constant_points && problem_ == nullptr) {
+    if (observations_.HasBearings()) {
+      SolveWithEliminatedPoints<BearingResidual>(solver_options, &summary);
+    } else {
+      SolveWithEliminatedPoints<PixelResidual>(solver_options, &summary);
+    }
   } else {
+    if (problem_ == nullptr) BuildCeresProblem();
     ceres::Solver::Options ceres_options = solver_options;
     SetEliminationOrdering(&ceres_options);
     ceres::Solve(ceres_options, problem_.get(), &summary);

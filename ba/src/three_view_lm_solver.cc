@@ -1,7 +1,6 @@
 // The dedicated Levenberg-Marquardt engine (three_view_lm_solver.h; derivations.md section 13).
 #include "three_view_lm_solver.h"
 
-#include <ceres/jet.h>
 #include <ceres/manifold.h>
 #include <ceres/sphere_manifold.h>
 
@@ -20,6 +19,7 @@
 
 #include "robust_loss.h"
 #include "trigrav/factors/angle_manifold.h"
+#include "trigrav/factors/observation_jacobian.h"
 #include "trigrav/factors/reprojection_factors.h"
 #include "trigrav/initializers/gravity.h"
 
@@ -54,34 +54,13 @@ class Loss {
   std::unique_ptr<ceres::LossFunction> loss_;
 };
 
-// Residual of one observation of a point in its camera's frame and its derivative d r / d x_cam,
-// by forward-mode automatic differentiation of the residual functor (Jets of 3: no allocation).
-// False if the observation cannot see the point or the result is not finite (Ceres then fails the
-// evaluation).
-template <typename Residual>
-bool EvaluateByJets(const Residual& residual,
-                    const Eigen::Vector3d& x,
-                    Eigen::Vector2d* r,
-                    Eigen::Matrix<double, 2, 3>* jacobian) {
-  using Jet = ceres::Jet<double, 3>;
-  const Jet x_jet[3] = {Jet(x[0], 0), Jet(x[1], 1), Jet(x[2], 2)};
-  Jet r_jet[2];
-  if (!residual(x_jet, r_jet)) return false;
-  for (int i = 0; i < 2; ++i) {
-    (*r)[i] = r_jet[i].a;
-    jacobian->row(i) = r_jet[i].v.transpose();
-  }
-  return r->allFinite() && jacobian->allFinite();
-}
-
 // One view's observations of the problem's points, in the order of the adjuster's triplets, with
-// Evaluate(p, x_cam, &r, &dr/dx_cam) as EvaluateByJets.
+// Evaluate(p, x_cam, &r, &dr/dx_cam) as LinearizeObservation
+// (trigrav/factors/observation_jacobian.h).
 template <typename Residual>
 class ViewObservations;
 
 // Pixels: the camera once and the pixels packed (16 bytes per point, read once per evaluation).
-// The derivative in closed form where it is short (section 13.1): pinhole models,
-// u = fx X / Z + cx: du/dX = fx / Z, du/dZ = -fx X / Z^2 (v alike); distortion models by Jets.
 template <>
 class ViewObservations<PixelResidual> {
  public:
@@ -100,13 +79,12 @@ class ViewObservations<PixelResidual> {
                 const Eigen::Vector3d& x,
                 Eigen::Vector2d* r,
                 Eigen::Matrix<double, 2, 3>* jacobian) const {
-    if (!pinhole_) return EvaluateByJets(PixelResidual{camera_, pixels_[p]}, x, r, jacobian);
+    if (!pinhole_) {
+      return LinearizeObservationByJets(PixelResidual{camera_, pixels_[p]}, x, r, jacobian);
+    }
     if (!camera_.Project(x.data(), r->data())) return false;
     *r -= pixels_[p];
-    const double inv_z = 1.0 / x.z();
-    const double fx = fx_ * inv_z;
-    const double fy = fy_ * inv_z;
-    *jacobian << fx, 0.0, -fx * x.x() * inv_z, 0.0, fy, -fy * x.y() * inv_z;
+    *jacobian = PinholeJacobian(fx_, fy_, x);
     return r->allFinite() && jacobian->allFinite();
   }
 
@@ -117,7 +95,6 @@ class ViewObservations<PixelResidual> {
   std::vector<Eigen::Vector2d> pixels_;
 };
 
-// Bearings, r_i = K (e_i . x) / (b . x) with K = 180 / pi: d r_i / dx = (K e_i - r_i b) / (b . x).
 template <>
 class ViewObservations<BearingResidual> {
  public:
@@ -132,14 +109,7 @@ class ViewObservations<BearingResidual> {
                 const Eigen::Vector3d& x,
                 Eigen::Vector2d* r,
                 Eigen::Matrix<double, 2, 3>* jacobian) const {
-    const BearingResidual& residual = residuals_[p];
-    if (!residual(x.data(), r->data())) return false;
-    const Eigen::Matrix3d& frame = residual.frame();
-    const double inv_along = 1.0 / frame.row(2).dot(x);
-    for (int i = 0; i < 2; ++i) {
-      jacobian->row(i) = (kRadiansToDegrees * frame.row(i) - (*r)[i] * frame.row(2)) * inv_along;
-    }
-    return r->allFinite() && jacobian->allFinite();
+    return LinearizeObservation(residuals_[p], x, r, jacobian);
   }
 
  private:

@@ -20,6 +20,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -95,7 +96,8 @@ BENCHMARK(BM_RobustEstimateIssueScenes)
     ->Unit(benchmark::kMillisecond)
     ->MinTime(1.0);
 
-enum class Refinement { kRaw, kCeres, kDedicated };
+// The refinement's engine; none for the raw stage.
+using Refinement = std::optional<trigrav::ThreeViewBundleAdjustmentOptions::Engine>;
 
 void BM_InitializeAndRefine(benchmark::State& state, Refinement refinement) {
   std::vector<trigrav::ThreeViewObservations> scenes;
@@ -103,12 +105,9 @@ void BM_InitializeAndRefine(benchmark::State& state, Refinement refinement) {
     scenes.push_back(trigrav::ToObservations(scene));
   }
   trigrav::InitializeAndRefineOptions options;
-  options.refine = refinement != Refinement::kRaw;
-  options.bundle_adjustment.engine =
-      refinement == Refinement::kDedicated
-          ? trigrav::ThreeViewBundleAdjustmentOptions::Engine::kDedicated
-          : trigrav::ThreeViewBundleAdjustmentOptions::Engine::kCeres;
-  std::vector<double> ransac, build, solve, reclassification, refine, inliers, runs;
+  options.refine = refinement.has_value();
+  if (refinement) options.bundle_adjustment.engine = *refinement;
+  std::vector<double> ransac, build, solve, reclassification, refine, inliers, runs, iterations;
   std::size_t i = 0;
   for (auto _ : state) {
     const std::size_t p = i++ % scenes.size();
@@ -123,6 +122,7 @@ void BM_InitializeAndRefine(benchmark::State& state, Refinement refinement) {
     refine.push_back(1e3 * t.refinement_s);
     inliers.push_back(estimate.num_inliers);
     runs.push_back(estimate.refinement_runs);
+    iterations.push_back(estimate.refinement.summary.Iterations());
   }
   state.counters["ransac_ms"] = trigrav::Median(ransac);
   state.counters["build_ms"] = trigrav::Median(build);
@@ -131,16 +131,20 @@ void BM_InitializeAndRefine(benchmark::State& state, Refinement refinement) {
   state.counters["refinement_ms"] = trigrav::Median(refine);
   state.counters["inliers"] = trigrav::Median(inliers);
   state.counters["runs"] = trigrav::Median(runs);
+  state.counters["last_run_iterations"] = trigrav::Median(iterations);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::pair<const char*, Refinement> refinements[] = {{"raw", Refinement::kRaw},
-                                                            {"ceres", Refinement::kCeres},
-                                                            {"dedicated", Refinement::kDedicated}};
+  using Engine = trigrav::ThreeViewBundleAdjustmentOptions::Engine;
+  const std::pair<std::string, Refinement> refinements[] = {
+      {"raw", std::nullopt},
+      {trigrav::EngineName(Engine::kCeres), Engine::kCeres},
+      {trigrav::EngineName(Engine::kDedicated), Engine::kDedicated},
+      {trigrav::EngineName(Engine::kCeresPointsEliminated), Engine::kCeresPointsEliminated}};
   for (const auto& [name, refinement] : refinements) {
-    benchmark::RegisterBenchmark((std::string("BM_InitializeAndRefine/") + name).c_str(),
+    benchmark::RegisterBenchmark(("BM_InitializeAndRefine/" + name).c_str(),
                                  [refinement = refinement](benchmark::State& state) {
                                    BM_InitializeAndRefine(state, refinement);
                                  })

@@ -62,7 +62,10 @@ DEFINE_string(rotation_model,
               "gravity_prior",
               "Refinement's rotation model: yaw_only (gravity exact) or gravity_prior.");
 DEFINE_double(gravity_sigma_deg, 0.1, "IMU gravity sigma (deg) of the gravity-prior model.");
-DEFINE_string(engine, "ceres", "Bundle-adjustment engine: ceres or dedicated (same optimum).");
+DEFINE_string(engine,
+              "ceres",
+              "Bundle-adjustment engine: ceres, dedicated or ceres_points_eliminated (same "
+              "optimum; ThreeViewBundleAdjustmentOptions::Engine).");
 DEFINE_bool(check_gravity,
             false,
             "Compare the gravity with a gravity-free estimate also after a success "
@@ -90,9 +93,7 @@ trigrav::InitializeAndRefineOptions EstimatorOptions() {
       FLAGS_rotation_model == "yaw_only" ? RotationModel::kYawOnly : RotationModel::kGravityPrior;
   ba.gravity_sigma_deg = FLAGS_gravity_sigma_deg;
   ba.loss_scale_px = FLAGS_max_error_px;
-  ba.engine = FLAGS_engine == "dedicated"
-                  ? trigrav::ThreeViewBundleAdjustmentOptions::Engine::kDedicated
-                  : trigrav::ThreeViewBundleAdjustmentOptions::Engine::kCeres;
+  trigrav::ParseEngine(FLAGS_engine, &ba.engine);  // checked by CheckFlags()
   ba.compute_covariance = true;
   options.Check();
   return options;
@@ -115,8 +116,9 @@ void CheckFlags() {
               "--rotation_model must be yaw_only or gravity_prior");
   RequireFlag(FLAGS_gravity_sigma_deg > 0.0 && std::isfinite(FLAGS_gravity_sigma_deg),
               "--gravity_sigma_deg must be positive and finite");
-  RequireFlag(FLAGS_engine == "ceres" || FLAGS_engine == "dedicated",
-              "--engine must be ceres or dedicated");
+  trigrav::ThreeViewBundleAdjustmentOptions::Engine engine;
+  RequireFlag(trigrav::ParseEngine(FLAGS_engine, &engine),
+              "--engine must be " + trigrav::EngineNames());
   RequireFlag(FLAGS_threads >= 1 && FLAGS_threads <= 256, "--threads must be in [1, 256]");
 }
 

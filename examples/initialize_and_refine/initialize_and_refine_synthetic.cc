@@ -62,8 +62,8 @@ DEFINE_string(rotation_model,
               "single: bundle adjustment rotation model: yaw-only, gravity-prior.");
 DEFINE_string(engine,
               "ceres",
-              "single: bundle-adjustment engine: ceres or dedicated (trigrav's own solver, same "
-              "optimum).");
+              "single: bundle-adjustment engine: ceres, dedicated (trigrav's own solver) or "
+              "ceres_points_eliminated (same optimum).");
 DEFINE_string(loss, "huber", "single: robust loss on the pixel residuals: huber, cauchy, none.");
 DEFINE_double(loss_scale_px, 2.0, "single: scale of the robust loss in pixels.");
 DEFINE_double(gravity_sigma_deg, 0.5, "single: IMU angular sigma of the gravity prior in degrees.");
@@ -152,12 +152,8 @@ trigrav::InitializeAndRefineOptions SingleOptions() {
                 "--rotation_model must be yaw-only or gravity-prior");
     ba.rotation_model = RotationModel::kGravityPrior;
   }
-  if (FLAGS_engine == "ceres") {
-    ba.engine = Options::Engine::kCeres;
-  } else {
-    RequireFlag(FLAGS_engine == "dedicated", "--engine must be ceres or dedicated");
-    ba.engine = Options::Engine::kDedicated;
-  }
+  RequireFlag(trigrav::ParseEngine(FLAGS_engine, &ba.engine),
+              "--engine must be " + trigrav::EngineNames());
   if (FLAGS_loss == "huber") {
     ba.loss = Options::LossType::kHuber;
   } else if (FLAGS_loss == "cauchy") {
@@ -218,9 +214,10 @@ void RunSingle() {
   } else {
     std::printf("exact gravity\n");
   }
-  std::printf("%s RANSAC with a %g px threshold, then %s bundle adjustment (%s, %s loss)\n\n",
-              FLAGS_solver.c_str(), FLAGS_threshold_px, FLAGS_rotation_model.c_str(),
-              FLAGS_engine == "ceres" ? "Ceres" : "dedicated engine", FLAGS_loss.c_str());
+  std::printf(
+      "%s RANSAC with a %g px threshold, then %s bundle adjustment (engine %s, %s loss)\n\n",
+      FLAGS_solver.c_str(), FLAGS_threshold_px, FLAGS_rotation_model.c_str(), FLAGS_engine.c_str(),
+      FLAGS_loss.c_str());
 
   std::mt19937_64 rng(FLAGS_seed);
   trigrav::PooledErrors raw_errors, refined_errors;

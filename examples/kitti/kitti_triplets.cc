@@ -88,7 +88,8 @@ DEFINE_double(pixel_sigma_px, 0.5, "Pixel noise that weights the gravity prior a
 DEFINE_double(loss_px, 1.0, "Huber scale of the bundle adjustment's pixel residuals.");
 DEFINE_string(engine,
               "ceres",
-              "Bundle-adjustment engine: ceres or dedicated (trigrav's own solver, same optimum).");
+              "Bundle-adjustment engine: ceres, dedicated (trigrav's own solver) or "
+              "ceres_points_eliminated (same optimum; ThreeViewBundleAdjustmentOptions::Engine).");
 DEFINE_int32(reclassification_rounds,
              1,
              "Refinement: re-classify the tracks against the refined pose and refine again, up to "
@@ -228,11 +229,8 @@ std::vector<kitti::Method> TrigravMethodsFromFlags() {
   options.robust.check_gravity_after_success = FLAGS_check_gravity;
   options.reclassification_rounds = FLAGS_reclassification_rounds;
   options.bundle_adjustment.loss_scale_px = FLAGS_loss_px;
-  RequireFlag(FLAGS_engine == "ceres" || FLAGS_engine == "dedicated",
-              "--engine must be ceres or dedicated");
-  options.bundle_adjustment.engine =
-      FLAGS_engine == "ceres" ? trigrav::ThreeViewBundleAdjustmentOptions::Engine::kCeres
-                              : trigrav::ThreeViewBundleAdjustmentOptions::Engine::kDedicated;
+  RequireFlag(trigrav::ParseEngine(FLAGS_engine, &options.bundle_adjustment.engine),
+              "--engine must be " + trigrav::EngineNames());
   // Ceres stops at a relative cost change of 1e-6 (library default 1e-8): on 00 and 02 the medians
   // agree to 0.001 deg and the refinement takes a quarter fewer iterations.
   options.bundle_adjustment.function_tolerance = 1e-6;

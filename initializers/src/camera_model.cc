@@ -104,14 +104,6 @@ void Camera::Check() const {
   }
 }
 
-bool Camera::IsPinhole() const {
-  return model == CameraModel::kSimplePinhole || model == CameraModel::kPinhole;
-}
-
-double Camera::FocalX() const { return params[internal::ParamLayout(model).fx]; }
-
-double Camera::FocalY() const { return params[internal::ParamLayout(model).fy]; }
-
 Eigen::Vector2d Camera::Project(const Eigen::Vector3d& point_in_cam) const {
   Eigen::Vector2d pixel;
   if (!Project(point_in_cam.data(), pixel.data())) {

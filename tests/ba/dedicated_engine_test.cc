@@ -1,6 +1,8 @@
-// The dedicated bundle-adjustment engine (ThreeViewBundleAdjustmentOptions::Engine::kDedicated)
-// against the Ceres engine on the same problems: same final cost, pose and covariance; the same
+// The dedicated bundle-adjustment engine (ThreeViewBundleAdjustmentOptions::Engine::kDedicated),
+// and the Ceres engine with the points eliminated (kCeresPointsEliminated), against the Ceres
+// engine on the same problems: same final cost, pose and covariance; the same
 // failures; warm-started second refinements (RefineThreeViewPose with a previous refinement).
+#include <ceres/autodiff_cost_function.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -160,6 +162,110 @@ TEST(DedicatedEngineTest, ReachesTheCeresOptimumOnRandomProblems) {
     }
   }
   EXPECT_EQ(cases, 2 * 7 * 3 * 2);
+}
+
+// Engine::kCeresPointsEliminated (variable projection) against Engine::kCeres, on every rotation
+// model, camera model (and bearings) and loss, on the inliers: the same optimum, poses to 1e-6 and
+// points to 1e-6 of their distance.
+TEST(DedicatedEngineTest, PointsEliminatedEngineReachesTheCeresOptimum) {
+  std::mt19937_64 rng(29);
+  int cases = 0;
+  for (const RotationModel model : {RotationModel::kYawOnly, RotationModel::kGravityPrior}) {
+    for (int observation = 0; observation <= static_cast<int>(kCameraModels.size());
+         ++observation) {
+      const bool bearings = observation == static_cast<int>(kCameraModels.size());
+      const CameraModel camera = bearings ? CameraModel::kPinhole : kCameraModels[observation];
+      for (const LossType loss : {LossType::kNone, LossType::kHuber, LossType::kCauchy}) {
+        SCOPED_TRACE(CaseName(model, bearings, camera, loss));
+        SyntheticScene scene;
+        const ThreeViewObservations observations =
+            SceneObservations(camera, bearings, &rng, &scene);
+        const ThreeViewPose initial = Perturbed(scene.ground_truth, &rng);
+        Options options;
+        options.rotation_model = model;
+        options.loss = loss;
+        options.gravity_sigma_deg = 0.2;
+        options.function_tolerance = 1e-12;
+        options.max_num_iterations = 500;  // the joint problem crawls with Cauchy's loss
+        // The inliers: an outlier's robust cost (Cauchy's most) can have several minima over its
+        // point, and the two formulations, which move the points differently, may settle in
+        // different ones.
+        const ThreeViewBundleAdjustmentConfig config =
+            ThreeViewBundleAdjustmentConfig::FromInlierMask(scene.is_inlier);
+        const Solved ceres = BuildAndSolve(observations, initial, options, config);
+        options.engine = Engine::kCeresPointsEliminated;
+        const Solved eliminated = BuildAndSolve(observations, initial, options, config);
+        ASSERT_TRUE(ceres.summary.success) << ceres.summary.message;
+        ASSERT_TRUE(eliminated.summary.success) << eliminated.summary.message;
+        EXPECT_EQ(eliminated.summary.num_residual_blocks, ceres.summary.num_residual_blocks);
+        ++cases;
+        if (loss == LossType::kCauchy) {
+          // Cauchy's cost is not convex where the imposed tilt leaves residuals of several
+          // pixels: the two formulations can stop in different minima. Never in a worse one here.
+          EXPECT_LE(eliminated.summary.FinalCost(), ceres.summary.FinalCost() * (1.0 + 1e-8))
+              << eliminated.summary.BriefReport() << "\n"
+              << ceres.summary.BriefReport();
+          if (eliminated.summary.FinalCost() < ceres.summary.FinalCost() * (1.0 - 1e-8)) continue;
+        }
+        EXPECT_NEAR(eliminated.summary.FinalCost(), ceres.summary.FinalCost(),
+                    1e-8 * ceres.summary.FinalCost())
+            << eliminated.summary.BriefReport() << "\n"
+            << ceres.summary.BriefReport();
+        EXPECT_LT(PoseDistance(eliminated.pose, ceres.pose), 1e-6);
+        ASSERT_EQ(eliminated.points.size(), ceres.points.size());
+        for (std::size_t p = 0; p < ceres.points.size(); ++p) {
+          EXPECT_LT((eliminated.points[p] - ceres.points[p]).norm(), 1e-6 * ceres.points[p].norm());
+        }
+      }
+    }
+  }
+  EXPECT_EQ(cases, 2 * 7 * 3);
+}
+
+// Residual 1e4 C (3) of a centre: a strong prior towards the origin.
+struct CenterPrior {
+  template <typename T>
+  bool operator()(const T* center, T* residual) const {
+    for (int i = 0; i < 3; ++i) residual[i] = T(1e4) * center[i];
+    return true;
+  }
+};
+
+// kCeresPointsEliminated solves problem() as kCeres when there is nothing to eliminate (constant
+// points) and when a caller asked for problem() (their factors would be ignored otherwise): a
+// caller's prior on C3 moves the result as it does with kCeres.
+TEST(DedicatedEngineTest, PointsEliminatedEngineSolvesProblemWhenAskedForIt) {
+  std::mt19937_64 rng(31);
+  SyntheticScene scene;
+  const ThreeViewObservations observations =
+      SceneObservations(CameraModel::kPinhole, false, &rng, &scene);
+  const ThreeViewPose initial = Perturbed(scene.ground_truth, &rng);
+  ThreeViewBundleAdjustmentConfig constant;
+  constant.constant_points = true;
+  Options options;
+  const Solved ceres = BuildAndSolve(observations, initial, options, constant);
+  options.engine = Engine::kCeresPointsEliminated;
+  const Solved eliminated = BuildAndSolve(observations, initial, options, constant);
+  ASSERT_TRUE(eliminated.summary.success) << eliminated.summary.message;
+  EXPECT_EQ(eliminated.summary.FinalCost(), ceres.summary.FinalCost());
+  EXPECT_EQ(eliminated.points, ceres.points);
+
+  // A prior pulling C3 to the origin, added through problem() with either engine.
+  std::vector<ThreeViewPose> with_prior;
+  for (const Engine engine : {Engine::kCeres, Engine::kCeresPointsEliminated}) {
+    options.engine = engine;
+    ThreeViewBundleAdjuster adjuster(observations, {}, options);
+    ASSERT_TRUE(adjuster.Build(initial));
+    adjuster.problem()->AddResidualBlock(
+        new ceres::AutoDiffCostFunction<CenterPrior, 3, 3>(new CenterPrior), nullptr,
+        adjuster.CenterBlock(3));
+    ASSERT_TRUE(adjuster.Solve().success);
+    with_prior.push_back(adjuster.CurrentPose());
+  }
+  EXPECT_LT(PoseDistance(with_prior[0], with_prior[1]), 1e-12);
+  EXPECT_LT(with_prior[1].cam3_from_cam1.Center().norm(),
+            0.5 * scene.ground_truth.cam3_from_cam1.Center().norm() /
+                scene.ground_truth.cam2_from_cam1.Center().norm());
 }
 
 // Tight tolerances: both engines go to the same point (poses and points to 1e-9).

@@ -199,6 +199,15 @@ inline CameraParamLayout ParamLayout(CameraModel model) {
 
 }  // namespace internal
 
+// Inline: the bundle adjustment's analytic Jacobians ask once per observation and evaluation.
+inline bool Camera::IsPinhole() const {
+  return model == CameraModel::kSimplePinhole || model == CameraModel::kPinhole;
+}
+
+inline double Camera::FocalX() const { return params[internal::ParamLayout(model).fx]; }
+
+inline double Camera::FocalY() const { return params[internal::ParamLayout(model).fy]; }
+
 template <typename T>
 bool Camera::Project(const T* point_in_cam, T* pixel) const {
   if (!(point_in_cam[2] > T(0))) return false;

@@ -12,6 +12,8 @@
 #include <limits>
 #include <utility>
 
+#include "triangular_factor.h"
+
 namespace trigrav {
 namespace internal {
 
@@ -63,14 +65,14 @@ Eigen::Matrix<double, N, 1> SmallestRightSingularVectorOfTriangular(
     if (std::abs(R_floor(i, i)) < floor) R_floor(i, i) = R_floor(i, i) < 0.0 ? -floor : floor;
   }
   Eigen::Matrix<double, N, 1> x = Eigen::Matrix<double, N, 1>::Unit(N - 1);
-  R_floor.template triangularView<Eigen::Upper>().solveInPlace(x);
+  SolveUpperInPlace(R_floor, &x);
   x.normalize();
   constexpr int kMaxIterations = 100;
   double previous_change = std::numeric_limits<double>::infinity();
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
     Eigen::Matrix<double, N, 1> next = x;
-    R_floor.transpose().template triangularView<Eigen::Lower>().solveInPlace(next);
-    R_floor.template triangularView<Eigen::Upper>().solveInPlace(next);
+    SolveUpperTransposedInPlace(R_floor, &next);
+    SolveUpperInPlace(R_floor, &next);
     next.normalize();
     if (AcceptInverseIterate(&next, &x, &previous_change)) break;
   }

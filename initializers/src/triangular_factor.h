@@ -8,11 +8,56 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <utility>
 
 namespace trigrav {
 namespace internal {
+
+// Solves R x = b (upper) and R^T x = b in place for a fixed-size upper-triangular R, by plain row
+// loops: Eigen's triangular solver goes through dynamic-size blocks and matrix-vector kernels,
+// several times slower at the solvers' sizes.
+template <int N>
+void SolveUpperInPlace(const Eigen::Matrix<double, N, N>& R, Eigen::Matrix<double, N, 1>* x) {
+  for (int i = N - 1; i >= 0; --i) {
+    double sum = (*x)[i];
+    for (int j = i + 1; j < N; ++j) sum -= R(i, j) * (*x)[j];
+    (*x)[i] = sum / R(i, i);
+  }
+}
+
+template <int N>
+void SolveUpperTransposedInPlace(const Eigen::Matrix<double, N, N>& R,
+                                 Eigen::Matrix<double, N, 1>* x) {
+  for (int i = 0; i < N; ++i) {
+    double sum = (*x)[i];
+    for (int j = 0; j < i; ++j) sum -= R(j, i) * (*x)[j];
+    (*x)[i] = sum / R(i, i);
+  }
+}
+
+// Upper Cholesky factor R (R^T R = A) of a fixed-size symmetric A, from its upper triangle, row by
+// row with plain loops (the role of Eigen's LLT, several times cheaper at these sizes). False if a
+// pivot is not positive (A not numerically positive definite).
+template <int N>
+bool UpperCholesky(const Eigen::Matrix<double, N, N>& A, Eigen::Matrix<double, N, N>* R) {
+  R->setZero();
+  for (int j = 0; j < N; ++j) {
+    double pivot = A(j, j);
+    for (int k = 0; k < j; ++k) pivot -= (*R)(k, j) * (*R)(k, j);
+    if (!(pivot > 0.0)) return false;
+    const double diagonal = std::sqrt(pivot);
+    (*R)(j, j) = diagonal;
+    const double inverse = 1.0 / diagonal;
+    for (int i = j + 1; i < N; ++i) {
+      double entry = A(j, i);
+      for (int k = 0; k < j; ++k) entry -= (*R)(k, j) * (*R)(k, i);
+      (*R)(j, i) = entry * inverse;
+    }
+  }
+  return true;
+}
 
 // Upper Cholesky factor R (R^T R = G + ridge I) of a Gram matrix G = A^T A, with a relative ridge
 // of 1e-15 so that an exact null space stays factorable.

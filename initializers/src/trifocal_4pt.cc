@@ -134,17 +134,19 @@ bool EnforceConstraints(const IncidenceMatrix& M,
       if (j != i) gram(E[j].a, E[i].a) += E[i].value * E[j].value;
     }
   }
-  const Eigen::LLT<Eigen::Matrix<double, 6, 6>> cholesky(gram);
-  if (cholesky.info() != Eigen::Success) return false;
-  const Eigen::Matrix<double, 6, 6> R_E = cholesky.matrixU();
+  Eigen::Matrix<double, 6, 6> R_E;
+  if (!internal::UpperCholesky(gram, &R_E)) return false;
   const double largest = R_E.diagonal().cwiseAbs().maxCoeff();
   if (!(R_E.diagonal().cwiseAbs().minCoeff() > 1e-8 * largest)) return false;
-  for (int j = 0; j < 6; ++j) {  // ME <- ME R_E^-1, column by column
-    for (int i = 0; i < j; ++i) ME.col(j) -= R_E(i, j) * ME.col(i);
-    ME.col(j) /= R_E(j, j);
+  // ME = Q R_ME gives M E R_E^-1 = Q (R_ME R_E^-1): the 6 x 6 triangular factor of the scaled
+  // system without scaling the tall one.
+  Eigen::Matrix<double, 6, 6> R = internal::TriangularFactor(ME);
+  for (int j = 0; j < 6; ++j) {  // R <- R R_E^-1, column by column
+    for (int i = 0; i < j; ++i) R.col(j) -= R_E(i, j) * R.col(i);
+    R.col(j) /= R_E(j, j);
   }
-  Vector6d a = internal::SmallestRightSingularVectorOfTriangular<6>(internal::TriangularFactor(ME));
-  R_E.triangularView<Eigen::Upper>().solveInPlace(a);
+  Vector6d a = internal::SmallestRightSingularVectorOfTriangular<6>(R);
+  internal::SolveUpperInPlace(R_E, &a);
 
   // a = lambda (beta c2, beta s2, beta, alpha c3, alpha s3, alpha), e' = -R2 c2 / alpha,
   // e'' = -R3 c3 / beta: c2 = -a6 R2^T e', c3 = -a3 R3^T e'' up to the common factor 1/lambda.
@@ -289,10 +291,14 @@ void PolishYawsAndCenters(std::size_t count,
   JtJ.noalias() += (JtJ.trace() / 8.0) * gauge * gauge.transpose();
   // With the gauge row JtJ is positive definite unless the data are degenerate: Cholesky (several
   // times cheaper than pivoted LDLT at 8x8), LDLT only where Cholesky fails.
-  const Eigen::LLT<Eigen::Matrix<double, 8, 8>> cholesky(JtJ);
-  const Eigen::Matrix<double, 8, 1> step =
-      cholesky.info() == Eigen::Success ? Eigen::Matrix<double, 8, 1>(-cholesky.solve(Jtr))
-                                        : Eigen::Matrix<double, 8, 1>(-JtJ.ldlt().solve(Jtr));
+  Eigen::Matrix<double, 8, 8> cholesky;
+  Eigen::Matrix<double, 8, 1> step = -Jtr;
+  if (internal::UpperCholesky(JtJ, &cholesky)) {
+    internal::SolveUpperTransposedInPlace(cholesky, &step);
+    internal::SolveUpperInPlace(cholesky, &step);
+  } else {
+    step = -JtJ.ldlt().solve(Jtr);
+  }
   if (!step.allFinite()) return;
   estimate->theta2 += step[0];
   estimate->theta3 += step[1];

@@ -1,7 +1,6 @@
 // Internal pieces the trifocal solvers share: the trifocal incidence equations of an aligned
-// triplet (as linear functions of the centres), the epipoles of a tensor, and the final
-// orientation and scaling into a ThreeViewPose. Not
-// installed; not part of the public API.
+// triplet (as linear functions of the centres), the epipoles of a tensor, and the final orientation
+// and scaling into a ThreeViewPose. Not installed; not part of the public API.
 #ifndef TRIGRAV_INITIALIZERS_SRC_TRIFOCAL_COMMON_H_
 #define TRIGRAV_INITIALIZERS_SRC_TRIFOCAL_COMMON_H_
 

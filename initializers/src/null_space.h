@@ -10,6 +10,9 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
+
+#include "triangular_factor.h"
 
 namespace trigrav {
 namespace internal {
@@ -62,48 +65,76 @@ Eigen::Matrix<double, N, 1> SmallestRightSingularVectorOfTriangular(
     if (std::abs(R_floor(i, i)) < floor) R_floor(i, i) = R_floor(i, i) < 0.0 ? -floor : floor;
   }
   Eigen::Matrix<double, N, 1> x = Eigen::Matrix<double, N, 1>::Unit(N - 1);
-  R_floor.template triangularView<Eigen::Upper>().solveInPlace(x);
+  SolveUpperInPlace(R_floor, &x);
   x.normalize();
   constexpr int kMaxIterations = 100;
   double previous_change = std::numeric_limits<double>::infinity();
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
     Eigen::Matrix<double, N, 1> next = x;
-    R_floor.transpose().template triangularView<Eigen::Lower>().solveInPlace(next);
-    R_floor.template triangularView<Eigen::Upper>().solveInPlace(next);
+    SolveUpperTransposedInPlace(R_floor, &next);
+    SolveUpperInPlace(R_floor, &next);
     next.normalize();
     if (AcceptInverseIterate(&next, &x, &previous_change)) break;
   }
   return x;
 }
 
+// Step K of NullVectorOfWideMatrix on the column-major R x C matrix A, in place: partial pivoting
+// (the largest |entry| of column K at or below row K; rows swapped from column K on, as only the
+// upper triangle is read later), then column K removed from the rows below by one fixed-size
+// rank-1 update. Stores 1 / pivot; false if the pivot is numerically zero.
+template <int K, int R, int C>
+bool EliminateWideColumn(double tolerance,
+                         Eigen::Matrix<double, R, C>* A,
+                         Eigen::Matrix<double, R, 1>* inverse_pivots) {
+  Eigen::Index offset = 0;
+  const double largest = A->col(K).template tail<R - K>().cwiseAbs().maxCoeff(&offset);
+  if (!(largest > tolerance)) return false;
+  if (offset != 0) {
+    A->row(K).template tail<C - K>().swap(A->row(K + offset).template tail<C - K>());
+  }
+  const double inverse_pivot = 1.0 / (*A)(K, K);
+  (*inverse_pivots)[K] = inverse_pivot;
+  if constexpr (K + 1 < R) {
+    constexpr int kRows = R - K - 1;
+    const Eigen::Matrix<double, kRows, 1> multipliers =
+        inverse_pivot * A->col(K).template tail<kRows>();
+    A->template bottomRightCorner<kRows, C - K - 1>().noalias() -=
+        multipliers * A->row(K).template tail<C - K - 1>();
+  }
+  return true;
+}
+
+template <int R, int C, int... K>
+bool EliminateWideColumns(double tolerance,
+                          Eigen::Matrix<double, R, C>* A,
+                          Eigen::Matrix<double, R, 1>* inverse_pivots,
+                          std::integer_sequence<int, K...>) {
+  return (EliminateWideColumn<K>(tolerance, A, inverse_pivots) && ...);
+}
+
 // Unit null vector of an (C-1) x C matrix, by Gaussian elimination with partial pivoting and back
 // substitution with x_C = 1: half the flops of a QR for the exactly determined minimal systems.
-// Returns the zero vector when the matrix is not of full row rank (a pivot below kRankTolerance
-// times the largest entry): its null space is then more than one-dimensional and no single answer
-// exists.
+// Each elimination step is unrolled with compile-time block sizes. Returns the zero vector when the
+// matrix is not of full row rank (a pivot below kRankTolerance times the largest entry): its null
+// space is then more than one-dimensional and no single answer exists.
 template <int C>
-Eigen::Matrix<double, C, 1> NullVectorOfWideMatrix(const Eigen::Matrix<double, C - 1, C>& A) {
+Eigen::Matrix<double, C, 1> NullVectorOfWideMatrix(Eigen::Matrix<double, C - 1, C> A) {
   constexpr int R = C - 1;
-  // Row operations span the full fixed-size row (the zeros left of the pivot included): more flops
-  // than trimmed rows, but unrolled and vectorised, which is faster at this size.
-  using Row = Eigen::Matrix<double, 1, C>;
-  std::array<Row, R> U;
-  for (int i = 0; i < R; ++i) U[i] = A.row(i);
   const double tolerance = kRankTolerance * A.cwiseAbs().maxCoeff();
   if (!(tolerance > 0.0)) return Eigen::Matrix<double, C, 1>::Zero();
-  for (int k = 0; k < R; ++k) {
-    int pivot = k;
-    for (int i = k + 1; i < R; ++i) {
-      if (std::abs(U[i][k]) > std::abs(U[pivot][k])) pivot = i;
-    }
-    std::swap(U[k], U[pivot]);
-    if (!(std::abs(U[k][k]) > tolerance)) return Eigen::Matrix<double, C, 1>::Zero();
-    const double inverse_pivot = 1.0 / U[k][k];
-    for (int i = k + 1; i < R; ++i) U[i] -= (U[i][k] * inverse_pivot) * U[k];
+  Eigen::Matrix<double, R, 1> inverse_pivots;
+  if (!EliminateWideColumns(tolerance, &A, &inverse_pivots, std::make_integer_sequence<int, R>())) {
+    return Eigen::Matrix<double, C, 1>::Zero();
   }
-  Eigen::Matrix<double, C, 1> x = Eigen::Matrix<double, C, 1>::Zero();
+  // U x = 0 with x_C = 1, column by column: b holds -(the solved columns of U) x.
+  Eigen::Matrix<double, R, 1> b = -A.col(C - 1);
+  Eigen::Matrix<double, C, 1> x;
   x[C - 1] = 1.0;
-  for (int k = R - 1; k >= 0; --k) x[k] = -U[k].dot(x.transpose()) / U[k][k];
+  for (int k = R - 1; k >= 0; --k) {
+    x[k] = b[k] * inverse_pivots[k];
+    b.head(k) -= x[k] * A.col(k).head(k);
+  }
   return x.normalized();
 }
 

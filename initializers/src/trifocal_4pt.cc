@@ -4,9 +4,11 @@
 #include <Eigen/QR>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "gravity_wrapper.h"
 #include "input_checks.h"
@@ -41,21 +43,16 @@ constexpr std::array<TensorEntry, 21> kTensorEntries = {{
 
 // The 4 incidence rows of one triplet in q (derivations.md section 3): p_a^T (sum_i x1_i T_i) r_b =
 // 0 for orthonormal bases (p_a) of x2^perp and (r_b) of x3^perp, equivalent to eq. c6.
-Eigen::Matrix<double, 4, 17> IncidenceRows(const Eigen::Vector3d& x1,
-                                           const Eigen::Vector3d& x2,
-                                           const Eigen::Vector3d& x3) {
-  Eigen::Vector3d p[2], r[2];
-  internal::PerpendicularBasis(x2, &p[0], &p[1]);
-  internal::PerpendicularBasis(x3, &r[0], &r[1]);
+Eigen::Matrix<double, 4, 17> IncidenceRows(const internal::TripletFrame& frame) {
   Eigen::Matrix<double, 4, 17> rows;
   for (int a = 0; a < 2; ++a) {
     for (int b = 0; b < 2; ++b) {
-      const Eigen::Matrix3d outer = p[a] * r[b].transpose();
+      const Eigen::Matrix3d outer = frame.p[a] * frame.r[b].transpose();
       double row[17] = {};
       // Unrolled, the table indices become constants (about 4x fewer instructions).
 #pragma GCC unroll 32
       for (const TensorEntry& e : kTensorEntries) {
-        row[e.q] += e.sign * x1[e.slice] * outer(e.row, e.col);
+        row[e.q] += e.sign * frame.x1[e.slice] * outer(e.row, e.col);
       }
       rows.row(2 * a + b) = Eigen::Map<const Eigen::Matrix<double, 1, 17>>(row);
     }
@@ -137,17 +134,19 @@ bool EnforceConstraints(const IncidenceMatrix& M,
       if (j != i) gram(E[j].a, E[i].a) += E[i].value * E[j].value;
     }
   }
-  const Eigen::LLT<Eigen::Matrix<double, 6, 6>> cholesky(gram);
-  if (cholesky.info() != Eigen::Success) return false;
-  const Eigen::Matrix<double, 6, 6> R_E = cholesky.matrixU();
+  Eigen::Matrix<double, 6, 6> R_E;
+  if (!internal::UpperCholesky(gram, &R_E)) return false;
   const double largest = R_E.diagonal().cwiseAbs().maxCoeff();
   if (!(R_E.diagonal().cwiseAbs().minCoeff() > 1e-8 * largest)) return false;
-  for (int j = 0; j < 6; ++j) {  // ME <- ME R_E^-1, column by column
-    for (int i = 0; i < j; ++i) ME.col(j) -= R_E(i, j) * ME.col(i);
-    ME.col(j) /= R_E(j, j);
+  // ME = Q R_ME gives M E R_E^-1 = Q (R_ME R_E^-1): the 6 x 6 triangular factor of the scaled
+  // system without scaling the tall one.
+  Eigen::Matrix<double, 6, 6> R = internal::TriangularFactor(ME);
+  for (int j = 0; j < 6; ++j) {  // R <- R R_E^-1, column by column
+    for (int i = 0; i < j; ++i) R.col(j) -= R_E(i, j) * R.col(i);
+    R.col(j) /= R_E(j, j);
   }
-  Vector6d a = internal::SmallestRightSingularVectorOfTriangular<6>(internal::TriangularFactor(ME));
-  R_E.triangularView<Eigen::Upper>().solveInPlace(a);
+  Vector6d a = internal::SmallestRightSingularVectorOfTriangular<6>(R);
+  internal::SolveUpperInPlace(R_E, &a);
 
   // a = lambda (beta c2, beta s2, beta, alpha c3, alpha s3, alpha), e' = -R2 c2 / alpha,
   // e'' = -R3 c3 / beta: c2 = -a6 R2^T e', c3 = -a3 R3^T e'' up to the common factor 1/lambda.
@@ -207,16 +206,13 @@ bool EstimatePaperClosedForm(const Vector17d& q, AlignedEstimate* estimate) {
 }
 
 // (c2; c3) = null vector of the stacked translation rows with the yaws fixed (derivations.md
-// section 3.4). Rows = 16: the minimal system at fixed size.
-template <int Rows>
-void ResolveCenters(const std::vector<Eigen::Vector3d>& x1,
-                    const std::vector<Eigen::Vector3d>& x2,
-                    const std::vector<Eigen::Vector3d>& x3,
-                    AlignedEstimate* estimate) {
+// section 3.4). Rows = 16: the minimal system at fixed size. frame(n): TripletFrame of triplet n.
+template <int Rows, typename FrameFunction>
+void ResolveCenters(std::size_t count, const FrameFunction& frame, AlignedEstimate* estimate) {
   const Eigen::Matrix3d R2 = RotationAboutY(estimate->theta2);
   const Eigen::Matrix3d R3 = RotationAboutY(estimate->theta3);
   const auto rows = [&](std::size_t n) {
-    return internal::TranslationRows(x1[n], x2[n], x3[n], R2, R3);
+    return internal::TranslationRows(internal::MakeTranslationTerms(frame(n), R2, R3));
   };
   Eigen::Matrix<double, 6, 6> R_F;
   if constexpr (Rows == 16) {
@@ -224,7 +220,7 @@ void ResolveCenters(const std::vector<Eigen::Vector3d>& x1,
     for (std::size_t n = 0; n < 4; ++n) F.middleRows<4>(4 * n) = rows(n);
     R_F = internal::TriangularFactor(F);
   } else {
-    R_F = internal::StackedTriangularFactor<6>(x1.size(), rows);
+    R_F = internal::StackedTriangularFactor<6>(count, rows);
   }
   const Vector6d centers = internal::SmallestRightSingularVectorOfTriangular<6>(R_F);
   // Keep the sign of the previous centres so the cheirality vote starts from a consistent guess.
@@ -234,6 +230,83 @@ void ResolveCenters(const std::vector<Eigen::Vector3d>& x1,
   estimate->center3 = (sign < 0.0 ? -1.0 : 1.0) * centers.tail<3>();
 }
 
+// One Gauss-Newton step on the incidence residuals r = F(theta2, theta3) (c2; c3) of all triplets
+// (the rows of TranslationRows), jointly over the yaws and the centres, with |(c2; c3)| held fixed
+// to first order (derivations.md section 4.5). Noise-free it converges quadratically to the exact
+// pose, removing the rounding tail of the linear steps (whose yaw error the translation solve
+// amplifies); with noise it moves the estimate to the nearest minimum of the algebraic residual.
+// Leaves the estimate unchanged if the step is not finite.
+template <typename FrameFunction>
+void PolishYawsAndCenters(std::size_t count,
+                          const FrameFunction& frame,
+                          AlignedEstimate* estimate) {
+  const Eigen::Matrix3d R2 = RotationAboutY(estimate->theta2);
+  const Eigen::Matrix3d R3 = RotationAboutY(estimate->theta3);
+  Vector6d centers;
+  centers << estimate->center2, estimate->center3;
+  const double norm = centers.norm();
+  if (!(norm > 0.0)) return;
+  centers /= norm;
+  // R_y^T dR_y/dtheta = K with K v = (v_z, 0, -v_x): the yaw derivatives of the terms of
+  // TranslationTerms are the same terms taken at K v.
+  const auto K = [](const Eigen::Vector3d& v) { return Eigen::Vector3d(v.z(), 0.0, -v.x()); };
+  const Eigen::Vector3d c2 = centers.head<3>(), Kc2 = K(c2);
+  const Eigen::Vector3d c3 = centers.tail<3>(), Kc3 = K(c3);
+  // Normal equations of the 4N x 8 Jacobian [dr/dtheta2, dr/dtheta3, F], accumulated per triplet.
+  Eigen::Matrix<double, 8, 8> JtJ = Eigen::Matrix<double, 8, 8>::Zero();
+  Eigen::Matrix<double, 8, 1> Jtr = Eigen::Matrix<double, 8, 1>::Zero();
+  for (std::size_t n = 0; n < count; ++n) {
+    const internal::TripletFrame& f = frame(n);
+    const internal::TranslationTerms t = internal::MakeTranslationTerms(f, R2, R3);
+    // Row (a, b) of r: zr_b (left_R2_a . c2) + pu_a (right_R3_b . c3); pu_a depends on theta2 and
+    // zr_b on theta3, with derivatives left_R2_a . K x1 and -right_R3_b . K x1.
+    const Eigen::Vector3d Kx1 = K(f.x1);
+    double l_c2[2], l_Kc2[2], dpu[2], r_c3[2], r_Kc3[2], dzr[2];
+    for (int i = 0; i < 2; ++i) {
+      l_c2[i] = t.left_R2[i].dot(c2);
+      l_Kc2[i] = t.left_R2[i].dot(Kc2);
+      dpu[i] = t.left_R2[i].dot(Kx1);
+      r_c3[i] = t.right_R3[i].dot(c3);
+      r_Kc3[i] = t.right_R3[i].dot(Kc3);
+      dzr[i] = -t.right_R3[i].dot(Kx1);
+    }
+    Eigen::Matrix<double, 4, 8> J;
+    Eigen::Vector4d residuals;
+    for (int a = 0; a < 2; ++a) {
+      for (int b = 0; b < 2; ++b) {
+        const int row = 2 * a + b;
+        J(row, 0) = t.zr[b] * l_Kc2[a] + dpu[a] * r_c3[b];
+        J(row, 1) = dzr[b] * l_c2[a] + t.pu[a] * r_Kc3[b];
+        J.block<1, 3>(row, 2) = t.zr[b] * t.left_R2[a].transpose();
+        J.block<1, 3>(row, 5) = t.pu[a] * t.right_R3[b].transpose();
+        residuals[row] = t.zr[b] * l_c2[a] + t.pu[a] * r_c3[b];
+      }
+    }
+    JtJ.noalias() += J.transpose().lazyProduct(J);
+    Jtr.noalias() += J.transpose().lazyProduct(residuals);
+  }
+  // Gauge: the step keeps c . delta_c = 0, weighted like an average row.
+  Eigen::Matrix<double, 8, 1> gauge = Eigen::Matrix<double, 8, 1>::Zero();
+  gauge.tail<6>() = centers;
+  JtJ.noalias() += (JtJ.trace() / 8.0) * gauge * gauge.transpose();
+  // With the gauge row JtJ is positive definite unless the data are degenerate: Cholesky (several
+  // times cheaper than pivoted LDLT at 8x8), LDLT only where Cholesky fails.
+  Eigen::Matrix<double, 8, 8> cholesky;
+  Eigen::Matrix<double, 8, 1> step = -Jtr;
+  if (internal::UpperCholesky(JtJ, &cholesky)) {
+    internal::SolveUpperTransposedInPlace(cholesky, &step);
+    internal::SolveUpperInPlace(cholesky, &step);
+  } else {
+    step = -JtJ.ldlt().solve(Jtr);
+  }
+  if (!step.allFinite()) return;
+  estimate->theta2 += step[0];
+  estimate->theta3 += step[1];
+  centers += step.tail<6>();
+  estimate->center2 = norm * centers.head<3>();
+  estimate->center3 = norm * centers.tail<3>();
+}
+
 // Rows = 16 for the minimal case (fixed size, no heap allocation) or Eigen::Dynamic.
 template <int Rows>
 int SolveAligned(const std::vector<Eigen::Vector3d>& x1,
@@ -241,18 +314,32 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1,
                  const std::vector<Eigen::Vector3d>& x3,
                  const Trifocal4ptOptions& options,
                  std::vector<ThreeViewPose>* solutions) {
+  // The rotation-independent parts of every triplet's rows: computed once for the 4 triplets of
+  // the minimal case, on the fly otherwise (no storage that grows with N).
+  std::array<internal::TripletFrame, Rows == 16 ? 4 : 0> frames;
+  using FrameResult =
+      std::conditional_t<Rows == 16, const internal::TripletFrame&, internal::TripletFrame>;
+  const auto frame = [&](std::size_t n) -> FrameResult {
+    if constexpr (Rows == 16) {
+      return frames[n];
+    } else {
+      return internal::MakeTripletFrame(x1[n], x2[n], x3[n]);
+    }
+  };
   // q: exact null vector of the 16 x 17 system in the minimal case, least-squares otherwise; M is
   // the system itself or its triangular factor (|A y| = |R_A y|), as enforcement needs it.
   Vector17d q;
   Eigen::Matrix<double, Rows == 16 ? 16 : 17, 17> M;
   if constexpr (Rows == 16) {
-    for (std::size_t n = 0; n < 4; ++n)
-      M.template middleRows<4>(4 * n) = IncidenceRows(x1[n], x2[n], x3[n]);
+    for (std::size_t n = 0; n < 4; ++n) {
+      frames[n] = internal::MakeTripletFrame(x1[n], x2[n], x3[n]);
+      M.template middleRows<4>(4 * n) = IncidenceRows(frames[n]);
+    }
     if (!M.allFinite()) return 0;
     q = internal::NullVectorOfWideMatrix<17>(M);
   } else {
     M = internal::StackedTriangularFactor<17>(
-        x1.size(), [&](std::size_t n) { return IncidenceRows(x1[n], x2[n], x3[n]); });
+        x1.size(), [&](std::size_t n) { return IncidenceRows(frame(n)); });
     if (!M.allFinite() || internal::HasMultipleNullDirections<17>(M)) return 0;
     q = internal::SmallestRightSingularVectorOfTriangular<17>(M);
   }
@@ -274,7 +361,7 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1,
       break;
   }
   if (!ok || !std::isfinite(estimate.theta2) || !std::isfinite(estimate.theta3)) return 0;
-  if (options.resolve_translations) ResolveCenters<Rows>(x1, x2, x3, &estimate);
+  if (options.resolve_translations) ResolveCenters<Rows>(x1.size(), frame, &estimate);
   if (options.recovery == Trifocal4ptRecovery::kEnforced) {
     // Epipoles of the current pose, e' ~ R2 c2 and e'' ~ R3 c3, then enforcement and centres again.
     for (int iteration = 0; iteration < options.epipole_iterations; ++iteration) {
@@ -284,13 +371,12 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1,
           !EnforceConstraints(M, epipole2, epipole3, &estimate)) {
         return 0;
       }
-      if (options.resolve_translations) ResolveCenters<Rows>(x1, x2, x3, &estimate);
+      if (options.resolve_translations) ResolveCenters<Rows>(x1.size(), frame, &estimate);
     }
   }
 
   for (int iteration = 0; iteration < options.polish_iterations; ++iteration) {
-    internal::RefineYawsAndCenters(x1, x2, x3, &estimate.theta2, &estimate.theta3,
-                                   &estimate.center2, &estimate.center3);
+    PolishYawsAndCenters(x1.size(), frame, &estimate);
   }
 
   ThreeViewPose pose;

@@ -50,7 +50,7 @@ void BindBundleAdjustmentOptions(py::module_& m) {
       .value("SPARSE_SCHUR", ceres::SPARSE_SCHUR)
       .value("ITERATIVE_SCHUR", ceres::ITERATIVE_SCHUR)
       .value("CGNR", ceres::CGNR);
-  options.Field("engine", &BundleOptions::engine, "Engine (CERES)")
+  options.Field("engine", &BundleOptions::engine, "Engine (CERES_POINTS_ELIMINATED)")
       .Field("rotation_model", &BundleOptions::rotation_model, "RotationModel (YAW_ONLY)")
       .Field("loss", &BundleOptions::loss, "LossType (HUBER)")
       .Field("loss_scale_px", &BundleOptions::loss_scale_px, "loss scale on pixel residuals (2)")

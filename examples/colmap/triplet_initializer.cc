@@ -27,6 +27,7 @@
 #include "match_graph.h"
 #include "staged_file.h"
 #include "trigrav/ba/initialize_and_refine.h"
+#include "trigrav/ba/three_view_bundle_adjustment.h"
 #include "trigrav/colmap/database.h"
 #include "trigrav/colmap/gravity_csv.h"
 #include "trigrav/colmap/model_io.h"
@@ -62,10 +63,12 @@ DEFINE_string(rotation_model,
               "gravity_prior",
               "Refinement's rotation model: yaw_only (gravity exact) or gravity_prior.");
 DEFINE_double(gravity_sigma_deg, 0.1, "IMU gravity sigma (deg) of the gravity-prior model.");
-DEFINE_string(engine,
-              "ceres",
-              "Bundle-adjustment engine: ceres, dedicated or ceres_points_eliminated (same "
-              "optimum; ThreeViewBundleAdjustmentOptions::Engine).");
+DEFINE_string(
+    engine,
+    "ceres",
+    "Bundle-adjustment engine (ThreeViewBundleAdjustmentOptions::Engine, the same "
+    "optimum): ceres (the times in README.md were made with it), ceres_points_eliminated (the "
+    "library's default) or dedicated (trigrav's own solver, the fastest).");
 DEFINE_bool(check_gravity,
             false,
             "Compare the gravity with a gravity-free estimate also after a success "

@@ -41,6 +41,7 @@
 
 #include "common/require_flag.h"
 #include "trigrav/ba/initialize_and_refine.h"
+#include "trigrav/ba/three_view_bundle_adjustment.h"
 #include "trigrav/evaluation/paper_protocol.h"
 #include "trigrav/evaluation/parallel_for.h"
 #include "trigrav/evaluation/pooled_errors.h"
@@ -60,10 +61,12 @@ DEFINE_string(solver, "3pt", "single: initial solver: 3pt, 3pt-sextic, 4pt, 7pt-
 DEFINE_string(rotation_model,
               "yaw-only",
               "single: bundle adjustment rotation model: yaw-only, gravity-prior.");
-DEFINE_string(engine,
-              "ceres",
-              "single: bundle-adjustment engine: ceres, dedicated (trigrav's own solver) or "
-              "ceres_points_eliminated (same optimum).");
+DEFINE_string(
+    engine,
+    trigrav::EngineName(trigrav::ThreeViewBundleAdjustmentOptions().engine),
+    "single: Bundle-adjustment engine (ThreeViewBundleAdjustmentOptions::Engine, the same "
+    "optimum): ceres_points_eliminated (the library's default), ceres or dedicated "
+    "(trigrav's own solver, the fastest).");
 DEFINE_string(loss, "huber", "single: robust loss on the pixel residuals: huber, cauchy, none.");
 DEFINE_double(loss_scale_px, 2.0, "single: scale of the robust loss in pixels.");
 DEFINE_double(gravity_sigma_deg, 0.5, "single: IMU angular sigma of the gravity prior in degrees.");

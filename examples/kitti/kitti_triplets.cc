@@ -86,10 +86,12 @@ DEFINE_double(gravity_sigma_deg,
               "the ground-truth tilt: a free refinement moves the tilt by about 0.03 deg).");
 DEFINE_double(pixel_sigma_px, 0.5, "Pixel noise that weights the gravity prior against pixels.");
 DEFINE_double(loss_px, 1.0, "Huber scale of the bundle adjustment's pixel residuals.");
-DEFINE_string(engine,
-              "ceres",
-              "Bundle-adjustment engine: ceres, dedicated (trigrav's own solver) or "
-              "ceres_points_eliminated (same optimum; ThreeViewBundleAdjustmentOptions::Engine).");
+DEFINE_string(
+    engine,
+    "ceres",
+    "Bundle-adjustment engine (ThreeViewBundleAdjustmentOptions::Engine, the same "
+    "optimum): ceres (the outputs in README.md were made with it), ceres_points_eliminated (the "
+    "library's default) or dedicated (trigrav's own solver, the fastest).");
 DEFINE_int32(reclassification_rounds,
              1,
              "Refinement: re-classify the tracks against the refined pose and refine again, up to "

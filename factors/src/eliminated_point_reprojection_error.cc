@@ -101,9 +101,17 @@ bool Linearize(const std::array<Residual, 3>& observations,
   return std::isfinite(out->cost) && out->h.allFinite() && out->g.allFinite();
 }
 
-// Inverse of a symmetric 3 x 3 matrix by its cofactors; false unless it is positive definite
-// (Sylvester's criterion) and the inverse finite.
-bool InvertPositiveDefinite(const Eigen::Matrix3d& m, Eigen::Matrix3d* inverse) {
+// (m + mu I)^-1 of a symmetric positive semi-definite 3 x 3 matrix by cofactors, with
+// mu = kPointDamping trace(m): a point whose depth the observations hardly constrain (no parallax)
+// has a nearly singular system, along a direction in which its cost hardly changes; the damping
+// keeps the step and the projection of section 15.3 finite there and leaves the others as they
+// are. False if the damped matrix is not positive definite (Sylvester's criterion) or the inverse
+// not finite.
+constexpr double kPointDamping = 1e-10;
+
+bool InvertDamped(const Eigen::Matrix3d& undamped, Eigen::Matrix3d* inverse) {
+  const Eigen::Matrix3d m =
+      undamped + kPointDamping * undamped.trace() * Eigen::Matrix3d::Identity();
   const double c00 = m(1, 1) * m(2, 2) - m(1, 2) * m(1, 2);
   const double c01 = m(0, 2) * m(1, 2) - m(0, 1) * m(2, 2);
   const double c02 = m(0, 1) * m(1, 2) - m(0, 2) * m(1, 1);
@@ -181,7 +189,7 @@ bool EliminatedPointReprojectionError<Residual>::Evaluate(double const* const* p
   if (!Linearize(observations_, loss_, rotation, center, point, &lin)) return false;
   for (int iteration = 0; iteration < kMaxPointIterations; ++iteration) {
     Eigen::Matrix3d h_inverse;
-    if (!InvertPositiveDefinite(lin.h, &h_inverse)) return false;
+    if (!InvertDamped(lin.h, &h_inverse)) return false;
     const Eigen::Vector3d step = -h_inverse * lin.g;
     const double decrement = -lin.g.dot(step);
     if (!std::isfinite(decrement)) return false;
@@ -251,7 +259,7 @@ bool EliminatedPointReprojectionError<Residual>::WriteResiduals(
   if (jacobians == nullptr) return true;
   // The point follows the cameras: project J_cameras off the columns of J_X.
   Eigen::Matrix3d normal_inverse;
-  if (!InvertPositiveDefinite(jx.transpose() * jx, &normal_inverse)) return false;
+  if (!InvertDamped(jx.transpose() * jx, &normal_inverse)) return false;
   const Eigen::Matrix<double, 6, 2 * kCameraSize> reduced =
       jc - jx * (normal_inverse * (jx.transpose() * jc));
   if (!reduced.allFinite()) return false;

@@ -130,6 +130,7 @@ TEST(DedicatedEngineTest, ReachesTheCeresOptimumOnRandomProblems) {
               SceneObservations(camera, bearings, &rng, &scene);
           const ThreeViewPose initial = Perturbed(scene.ground_truth, &rng);
           Options options;
+          options.engine = Engine::kCeres;
           options.rotation_model = model;
           options.loss = loss;
           options.gravity_sigma_deg = 0.2;
@@ -182,6 +183,7 @@ TEST(DedicatedEngineTest, PointsEliminatedEngineReachesTheCeresOptimum) {
             SceneObservations(camera, bearings, &rng, &scene);
         const ThreeViewPose initial = Perturbed(scene.ground_truth, &rng);
         Options options;
+        options.engine = Engine::kCeres;
         options.rotation_model = model;
         options.loss = loss;
         options.gravity_sigma_deg = 0.2;
@@ -243,6 +245,7 @@ TEST(DedicatedEngineTest, PointsEliminatedEngineSolvesProblemWhenAskedForIt) {
   ThreeViewBundleAdjustmentConfig constant;
   constant.constant_points = true;
   Options options;
+  options.engine = Engine::kCeres;
   const Solved ceres = BuildAndSolve(observations, initial, options, constant);
   options.engine = Engine::kCeresPointsEliminated;
   const Solved eliminated = BuildAndSolve(observations, initial, options, constant);
@@ -277,6 +280,7 @@ TEST(DedicatedEngineTest, ConvergesToTheSamePointAtTightTolerances) {
         SceneObservations(CameraModel::kOpenCV, false, &rng, &scene);
     const ThreeViewPose initial = Perturbed(scene.ground_truth, &rng);
     Options options;
+    options.engine = Engine::kCeres;
     options.rotation_model = model;
     options.function_tolerance = 1e-15;
     options.parameter_tolerance = 1e-15;
@@ -470,22 +474,26 @@ TEST(DedicatedEngineTest, InitializeAndRefineAgreesWithTheCeresEngine) {
     const ThreeViewObservations observations = ToObservations(scene);
     InitializeAndRefineOptions options;
     options.robust.ransac.seed = 3;
+    options.bundle_adjustment.engine = Engine::kCeres;
     const ThreeViewEstimate ceres = InitializeAndRefine(observations, options);
-    options.bundle_adjustment.engine = Engine::kDedicated;
-    const ThreeViewEstimate dedicated = InitializeAndRefine(observations, options);
-    ASSERT_TRUE(ceres.success && dedicated.success);
-    ASSERT_TRUE(dedicated.refinement.summary.success) << dedicated.message;
-    EXPECT_EQ(dedicated.inliers, ceres.inliers);
-    EXPECT_EQ(dedicated.refinement_runs, ceres.refinement_runs);
-    EXPECT_LT(PoseDistance(dedicated.refined, ceres.refined), 1e-6);
-    EXPECT_NEAR(dedicated.refinement.summary.FinalCost(), ceres.refinement.summary.FinalCost(),
-                1e-8 * ceres.refinement.summary.FinalCost());
-    const ThreeViewEstimateTimings& t = dedicated.timings;
-    EXPECT_GT(t.build_s, 0.0);
-    EXPECT_GT(t.solve_s, 0.0);
-    EXPECT_GT(t.reclassification_s, 0.0);
-    EXPECT_LE(t.build_s + t.solve_s + t.covariance_s + t.reclassification_s, t.refinement_s);
-    EXPECT_LE(t.ransac_s + t.refinement_s, t.total_s);
+    for (const Engine engine : {Engine::kDedicated, Engine::kCeresPointsEliminated}) {
+      SCOPED_TRACE(EngineName(engine));
+      options.bundle_adjustment.engine = engine;
+      const ThreeViewEstimate other = InitializeAndRefine(observations, options);
+      ASSERT_TRUE(ceres.success && other.success);
+      ASSERT_TRUE(other.refinement.summary.success) << other.message;
+      EXPECT_EQ(other.inliers, ceres.inliers);
+      EXPECT_EQ(other.refinement_runs, ceres.refinement_runs);
+      EXPECT_LT(PoseDistance(other.refined, ceres.refined), 1e-6);
+      EXPECT_NEAR(other.refinement.summary.FinalCost(), ceres.refinement.summary.FinalCost(),
+                  1e-8 * ceres.refinement.summary.FinalCost());
+      const ThreeViewEstimateTimings& t = other.timings;
+      EXPECT_GT(t.build_s, 0.0);
+      EXPECT_GT(t.solve_s, 0.0);
+      EXPECT_GT(t.reclassification_s, 0.0);
+      EXPECT_LE(t.build_s + t.solve_s + t.covariance_s + t.reclassification_s, t.refinement_s);
+      EXPECT_LE(t.ransac_s + t.refinement_s, t.total_s);
+    }
   }
 }
 

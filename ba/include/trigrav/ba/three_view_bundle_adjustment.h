@@ -46,26 +46,27 @@ struct ThreeViewBundleAdjustmentOptions {
     kGravityPrior,
   };
   enum class LossType { kNone, kHuber, kCauchy };
-  // Who minimises the problem. Both minimise the same cost with Ceres' Levenberg-Marquardt rules
-  // (trust region, Jacobi scaling, tolerances, iteration cap of CeresSolverOptions()) and reach the
-  // same optimum (tests/ba/dedicated_engine_test.cc: final costs equal to 1e-8 relative).
-  //  - kCeres: ceres::Solve on problem() (DENSE_SCHUR by default); factors a caller added to
-  //    problem() take part.
-  //  - kDedicated: trigrav's own solver of this problem (derivations.md section 13): each point's
-  //    3 x 3 block eliminated, a fixed-size 7 x 7 (11 x 11) reduced system, no ceres::Problem
-  //    built, no allocation per iteration; 8-20 times faster than kCeres at 300-650 points
-  //    (examples/benchmarks/README.md). Uses neither linear_solver_type nor num_threads, and
-  //    ignores factors added to problem().
-  //  - kCeresPointsEliminated: ceres::Solve on a problem of the pose blocks alone, one
+  // Who minimises the problem. All three reach the same optimum (tests/ba/dedicated_engine_test.cc:
+  // final costs equal to 1e-8 relative; with Cauchy's loss, whose cost can have several minima,
+  // kCeresPointsEliminated may stop in another, never a worse one on those tests) with Ceres'
+  // trust-region rules and the tolerances and iteration cap of CeresSolverOptions().
+  //  - kCeresPointsEliminated (default): ceres::Solve on a problem of the pose blocks alone, one
   //    EliminatedPointReprojectionError per point (variable projection, derivations.md section
-  //    15): the same optimum in fewer iterations, a 7 x 7 (11 x 11) dense system
+  //    15): usually fewer iterations than kCeres, a 7 x 7 (11 x 11) dense system
   //    (DENSE_NORMAL_CHOLESKY, whatever linear_solver_type says). It solves problem() as kCeres
   //    instead when problem() was asked for after Build() (so that factors, constant blocks or
   //    bounds a caller put there take part) and with Config::constant_points (no point to
   //    eliminate).
+  //  - kCeres: ceres::Solve on problem(), one factor per observation and a block per point
+  //    (DENSE_SCHUR by default); factors a caller added to problem() take part.
+  //  - kDedicated: trigrav's own Levenberg-Marquardt on problem()'s cost (derivations.md section
+  //    13): each point's 3 x 3 block eliminated, a fixed-size 7 x 7 (11 x 11) reduced system, no
+  //    ceres::Problem built, no allocation per iteration; the fastest
+  //    (examples/benchmarks/README.md). Uses neither linear_solver_type nor num_threads, and
+  //    ignores factors added to problem().
   enum class Engine { kCeres, kDedicated, kCeresPointsEliminated };
 
-  Engine engine = Engine::kCeres;
+  Engine engine = Engine::kCeresPointsEliminated;
   RotationModel rotation_model = RotationModel::kYawOnly;
   LossType loss = LossType::kHuber;
   // Huber / Cauchy scale on the pixel residuals. At the RANSAC threshold (2 px) Huber only guards

@@ -46,8 +46,14 @@ constexpr std::array<Offset, 9> kOffsets = {{
     {kCos8, kSin8, kSqrtHalf, kSqrtHalf},    // pi/8
     {kCos8, -kSin8, kSqrtHalf, -kSqrtHalf},  // -pi/8
 }};
-// The leading coefficient counts as tiny below this fraction of the largest coefficient.
+// The leading coefficient counts as tiny below this fraction of the largest coefficient: sextic
+// solver.
 constexpr double kMinRelativeLeading = 1e-2;
+// Decoupled solver: the same for the trigonometric coefficients of D (TrigQuadratic). Stricter,
+// since a small leading coefficient means a root of large |t|, and Ferrari's shift by a quarter of
+// the root sum then costs the other roots digits: at 1e-2 a scene with roots near 199 and two 5e-5
+// apart near 0.04 lost the pair (a 0.03 deg error noise-free).
+constexpr double kMinRelativeQuarticLeading = 0.1;
 // Decoupled solver: at most this many guarded Newton steps polish each quartic root (usually 1-2
 // are taken; near-double roots need more).
 constexpr int kQuarticNewtonSteps = 6;
@@ -97,15 +103,15 @@ struct TrigLinear {
 };
 
 // Picks the Cayley offset: the first of kOffsets whose leading coefficient (the value of the
-// trigonometric polynomial at theta_0 + pi, evaluated by `leading`) is not tiny relative to
-// `scale`, else the one with the largest leading coefficient.
+// trigonometric polynomial at theta_0 + pi, evaluated by `leading`) is at least min_relative *
+// scale, else the one with the largest leading coefficient.
 template <typename Leading>
-const Offset& ChooseOffset(double scale, Leading&& leading) {
+const Offset& ChooseOffset(double min_relative, double scale, Leading&& leading) {
   const Offset* best_offset = &kOffsets[0];
   double best = -1.0;
   for (const Offset& offset : kOffsets) {
     const double value = std::abs(leading(offset));
-    if (value >= kMinRelativeLeading * scale) return offset;
+    if (value >= min_relative * scale) return offset;
     if (value > best) {
       best = value;
       best_offset = &offset;
@@ -124,12 +130,44 @@ struct PairRoot {
   Eigen::Vector3d depth;    // view-1 depths lambda_n of the 3 points, |c_k| = 1
 };
 
-// det[m_1; m_2; m_3] at 5 equally spaced yaws, m_n(theta) = (R_y(theta) x1_n) x xk_n = cos P_n +
-// sin Q_n + S_n, is a trigonometric polynomial of degree 2 (the degree-6 polynomial in tan(theta/2)
-// has the factor 1 + tan^2, derivations.md section 5.5), D = a0 + a1 cos + b1 sin + a2 cos 2theta +
-// b2 sin 2theta; a 5-point DFT gives its coefficients exactly.
+// det[m_1; m_2; m_3], m_n(theta) = (R_y(theta) x1_n) x xk_n = cos P_n + sin Q_n + S_n, is a
+// trigonometric polynomial of degree 2 (the degree-6 polynomial in tan(theta/2) has the factor
+// 1 + tan^2, derivations.md section 5.5), D = a0 + a1 cos + b1 sin + a2 cos 2theta + b2 sin 2theta,
+// with coefficients in closed form (TrigQuadratic::FromNormals).
 struct TrigQuadratic {
   double a0 = 0.0, a1 = 0.0, b1 = 0.0, a2 = 0.0, b2 = 0.0;
+  // D from P_n, Q_n, S_n (S_n has no y part) by multilinearity, w_n = cos P_n + sin Q_n
+  // (derivations.md section 5.5): det[S] = 0; the terms with two S give sum_n sigma_n w_n.y,
+  // sigma_n = (S_i x S_j).y; det[w] = det[P] cos + det[Q] sin on the unit circle; the terms with
+  // one S give A cos^2 + B cos sin + C sin^2, A = sum_n S_n . (P_i x P_j), B = sum_n S_n . (P_i x
+  // Q_j + Q_i x P_j), C = sum_n S_n . (Q_i x Q_j), over (n, i, j) = (0, 1, 2), (1, 2, 0), (2, 0,
+  // 1).
+  static TrigQuadratic FromNormals(const std::array<Eigen::Vector3d, 3>& P,
+                                   const std::array<Eigen::Vector3d, 3>& Q,
+                                   const std::array<Eigen::Vector3d, 3>& S) {
+    // S . (u x v) for S with S.y = 0.
+    auto s_dot_cross = [](const Eigen::Vector3d& S, const Eigen::Vector3d& u,
+                          const Eigen::Vector3d& v) {
+      return S.x() * (u.y() * v.z() - u.z() * v.y()) + S.z() * (u.x() * v.y() - u.y() * v.x());
+    };
+    double A = 0.0, B = 0.0, C = 0.0, linear_cos = 0.0, linear_sin = 0.0;
+    for (int n = 0; n < 3; ++n) {
+      const int i = n == 2 ? 0 : n + 1, j = n == 0 ? 2 : n - 1;
+      A += s_dot_cross(S[n], P[i], P[j]);
+      B += s_dot_cross(S[n], P[i], Q[j]) + s_dot_cross(S[n], Q[i], P[j]);
+      C += s_dot_cross(S[n], Q[i], Q[j]);
+      const double sigma = S[i].z() * S[j].x() - S[i].x() * S[j].z();
+      linear_cos += sigma * P[n].y();
+      linear_sin += sigma * Q[n].y();
+    }
+    TrigQuadratic D;
+    D.a0 = 0.5 * (A + C);
+    D.a1 = P[0].dot(P[1].cross(P[2])) + linear_cos;
+    D.b1 = Q[0].dot(Q[1].cross(Q[2])) + linear_sin;
+    D.a2 = 0.5 * (A - C);
+    D.b2 = 0.5 * B;
+    return D;
+  }
   // Value at theta_0 + pi, the leading coefficient of the quartic in tan((theta - theta_0)/2).
   double AtOffsetPlusPi(const Offset& o) const {
     return a0 - a1 * o.c - b1 * o.s + a2 * o.c2 + b2 * o.s2;
@@ -164,31 +202,10 @@ int SolveUprightPair(const MinimalRays& x1, const MinimalRays& xk, std::array<Pa
     q[n] = z * a - x * c;
     s[n] = y * b;
   }
-  // cos and sin of 2 pi j / 5.
-  static constexpr double kC[5] = {1.0, 0.30901699437494742, -0.80901699437494742,
-                                   -0.80901699437494742, 0.30901699437494742};
-  static constexpr double kS[5] = {0.0, 0.95105651629515357, 0.58778525229247313,
-                                   -0.58778525229247313, -0.95105651629515357};
-  TrigQuadratic D;
-  double squared_hadamard_bound = 0.0;  // prod_n |m_n|^2 at theta = 0, >= det^2 there
-  for (int j = 0; j < 5; ++j) {
-    const Eigen::Vector3d m0 = kC[j] * P[0] + kS[j] * Q[0] + S[0];
-    const Eigen::Vector3d m1 = kC[j] * P[1] + kS[j] * Q[1] + S[1];
-    const Eigen::Vector3d m2 = kC[j] * P[2] + kS[j] * Q[2] + S[2];
-    if (j == 0) squared_hadamard_bound = m0.squaredNorm() * m1.squaredNorm() * m2.squaredNorm();
-    const double value = m0.dot(m1.cross(m2));
-    const int j2 = (2 * j) % 5;  // 2 theta_j = theta_{2j mod 5}
-    D.a0 += value;
-    D.a1 += value * kC[j];
-    D.b1 += value * kS[j];
-    D.a2 += value * kC[j2];
-    D.b2 += value * kS[j2];
-  }
-  D.a0 *= 0.2;
-  D.a1 *= 0.4;
-  D.b1 *= 0.4;
-  D.a2 *= 0.4;
-  D.b2 *= 0.4;
+  const TrigQuadratic D = TrigQuadratic::FromNormals(P, Q, S);
+  double squared_hadamard_bound = 1.0;  // prod_n |m_n|^2 at theta = 0, >= det^2 there
+  for (std::size_t n = 0; n < kNumTriplets; ++n)
+    squared_hadamard_bound *= (P[n] + S[n]).squaredNorm();
   const double scale = D.Scale();
   // The determinant vanishes identically (rounding leaves about 1e-16 of the Hadamard bound) when
   // two triplets coincide.
@@ -200,7 +217,8 @@ int SolveUprightPair(const MinimalRays& x1, const MinimalRays& xk, std::array<Pa
   }
 
   const Offset& offset =
-      ChooseOffset(scale, [&D](const Offset& theta0) { return D.AtOffsetPlusPi(theta0); });
+      ChooseOffset(kMinRelativeQuarticLeading, scale,
+                   [&D](const Offset& theta0) { return D.AtOffsetPlusPi(theta0); });
   std::array<double, 4> t;
   const int num_t =
       internal::SolveQuarticReal(D.Quartic(offset), &t, kQuarticNewtonSteps, kMaxImaginaryPart);
@@ -415,7 +433,7 @@ int SolveSexticAligned(const Rays& x1,
   const Offset* offset = &kOffsets[0];
   if (std::abs(sextic[6]) < kMinRelativeLeading * scale) {
     // The leading coefficient is the value of the sextic's trigonometric form at theta_0 + pi.
-    offset = &ChooseOffset(scale, [&](const Offset& theta0) {
+    offset = &ChooseOffset(kMinRelativeLeading, scale, [&](const Offset& theta0) {
       const std::array<double, 7> h = system.Sextic(theta0);
       return h[6] * scale / std::max(max_abs(h), 1e-300);
     });

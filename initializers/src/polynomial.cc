@@ -233,10 +233,22 @@ double LargestRealCubicRoot(double a, double b, double c) {
     const double u = std::cbrt(-half_Q - std::copysign(std::sqrt(discriminant), half_Q));
     x = (u != 0.0 ? u - third_P / u : 0.0) - shift;
   } else {
-    // Three real roots (trigonometric form, P <= 0); the largest is 2 r cos(phi / 3).
+    // Three real roots (P <= 0): z = 2 r c with r = sqrt(-P/3) and c the largest root of
+    // 4 c^3 - 3 c = cos(phi) := -Q / (2 r^3), i.e. c = cos(phi / 3) in [1/2, 1], without
+    // trigonometric calls: with u = sqrt((1 + cos(phi)) / 2) = cos(phi / 2), c = cos(2/3 acos(u)),
+    // smooth on [0, 1]; a degree-4 interpolant at Chebyshev nodes (within 1.1e-5) and one Halley
+    // step on 4 c^3 - 3 c - cos(phi) give it to rounding (derivations.md section 5.5).
     const double r = std::sqrt(std::max(-third_P, 0.0));
     const double cosine = r > 0.0 ? std::clamp(-half_Q / (r * r * r), -1.0, 1.0) : 0.0;
-    x = 2.0 * r * std::cos(std::acos(cosine) / 3.0) - shift;
+    const double u = std::sqrt(0.5 + 0.5 * cosine);
+    double c =
+        0.5000106084908351 +
+        u * (0.5768124795415822 +
+             u * (-0.10649398677496211 + u * (0.038352908445762925 - u * 0.008688352074050488)));
+    const double h = (4.0 * c * c - 3.0) * c - cosine, slope = 12.0 * c * c - 3.0;
+    const double denominator = 2.0 * slope * slope - 24.0 * h * c;
+    if (denominator > 0.0) c -= 2.0 * h * slope / denominator;
+    x = 2.0 * r * c - shift;
   }
   PolishRootNewton(std::array<double, 4>{c, b, a, 1.0}, 2, &x);
   return x;
@@ -274,9 +286,12 @@ int SolveQuarticReal(const std::array<double, 5>& c,
     // y^2 -/+ s y + (p/2 + m +/- q/(2s)) = 0 with s = sqrt(2m).
     const double s = std::sqrt(2.0 * m);
     const double offset = 0.5 * q / s;
+    const double real_plus = 0.5 * s - shift, real_minus = -0.5 * s - shift;
+    count += SolveMonicQuadratic(-s, 0.5 * p + m + offset, max_imag * (1.0 + real_plus * real_plus),
+                                 &y[count], &approximate[count]);
     count +=
-        SolveMonicQuadratic(-s, 0.5 * p + m + offset, max_imag, &y[count], &approximate[count]);
-    count += SolveMonicQuadratic(s, 0.5 * p + m - offset, max_imag, &y[count], &approximate[count]);
+        SolveMonicQuadratic(s, 0.5 * p + m - offset, max_imag * (1.0 + real_minus * real_minus),
+                            &y[count], &approximate[count]);
   } else {
     // q ~ 0: biquadratic y^4 + p y^2 + r, y^2 = z with z^2 + p z + r = 0.
     const double scale =

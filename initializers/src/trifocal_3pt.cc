@@ -204,8 +204,9 @@ int SolveUprightPair(const MinimalRays& x1, const MinimalRays& xk, std::array<Pa
   }
   const TrigQuadratic D = TrigQuadratic::FromNormals(P, Q, S);
   double squared_hadamard_bound = 1.0;  // prod_n |m_n|^2 at theta = 0, >= det^2 there
-  for (std::size_t n = 0; n < kNumTriplets; ++n)
+  for (std::size_t n = 0; n < kNumTriplets; ++n) {
     squared_hadamard_bound *= (P[n] + S[n]).squaredNorm();
+  }
   const double scale = D.Scale();
   // The determinant vanishes identically (rounding leaves about 1e-16 of the Hadamard bound) when
   // two triplets coincide.
@@ -225,44 +226,48 @@ int SolveUprightPair(const MinimalRays& x1, const MinimalRays& xk, std::array<Pa
 
   int count = 0;
   for (int i = 0; i < num_t; ++i) {
-    PairRoot& root = (*roots)[count];
-    root.yaw = Yaw::FromCayley(t[i], offset);
-    const double c = root.yaw.c, sn = root.yaw.s;
+    // Everything below is homogeneous in w = 1 + t^2 > 0, so the yaw is carried unnormalised,
+    // (c, sn) = w (cos theta, sin theta) (Yaw::FromCayley times w), and m_n = w m_n(theta).
+    const double t_squared = t[i] * t[i];
+    const double w = 1.0 + t_squared, c_phi = 1.0 - t_squared, s_phi = 2.0 * t[i];
+    const double c = c_phi * offset.c - s_phi * offset.s, sn = s_phi * offset.c + c_phi * offset.s;
     // The epipole R_k c_k is orthogonal to the three epipolar normals m_n: take the best
-    // conditioned cross product of two of them.
+    // conditioned cross product of two of them (normalised once the root is kept).
     std::array<Eigen::Vector3d, 3> m;
-    for (std::size_t n = 0; n < kNumTriplets; ++n) m[n] = c * P[n] + sn * Q[n] + S[n];
+    for (std::size_t n = 0; n < kNumTriplets; ++n) m[n] = c * P[n] + sn * Q[n] + w * S[n];
     Eigen::Vector3d epipole = m[0].cross(m[1]);
     for (const Eigen::Vector3d& candidate : {m[1].cross(m[2]), m[2].cross(m[0])}) {
       if (candidate.squaredNorm() > epipole.squaredNorm()) epipole = candidate;
     }
-    const double norm = epipole.norm();
-    if (!(norm > 0.0) || !std::isfinite(norm)) continue;
-    epipole /= norm;
     // View-1 depths lambda_n = ((xk x e) . (xk x R x1)) / |xk x R x1|^2, xk x R x1 = -m_n
-    // (derivations.md section 4.6). The sign of c_k is free: all depths must be positive for one
-    // of the two signs, which the numerators decide before any division.
-    std::array<double, 3> numerator;
-    for (std::size_t n = 0; n < kNumTriplets; ++n) {
-      numerator[n] = -xk[n].cross(epipole).dot(m[n]);
-    }
-    const double sign = numerator[0] < 0.0 ? -1.0 : 1.0;
+    // (derivations.md section 4.6), and in front of camera k too: (R (lambda x1 - c)) . xk =
+    // lambda (R x1) . xk - e . xk > 0. The sign of c_k is free: both tests hold for one of the two
+    // signs, which the first numerator decides; multiplied by |m_n|^2 > 0, they need no division.
+    std::array<double, 3> numerator, denominator;
     bool in_front = true;
     for (std::size_t n = 0; n < kNumTriplets; ++n) {
-      const double denominator = m[n].squaredNorm();
-      in_front = in_front && sign * numerator[n] > 0.0 && denominator > 0.0;
-      if (!in_front) break;
-      root.depth[n] = sign * numerator[n] / denominator;
+      numerator[n] = -xk[n].cross(epipole).dot(m[n]);
+      denominator[n] = m[n].squaredNorm();
+    }
+    const double sign = numerator[0] < 0.0 ? -1.0 : 1.0;
+    for (std::size_t n = 0; n < kNumTriplets; ++n) {
+      in_front &= (sign * numerator[n] > 0.0) & (denominator[n] > 0.0) &
+                  (sign * (numerator[n] * (c * p[n] + sn * q[n] + w * s[n]) -
+                           denominator[n] * epipole.dot(xk[n])) >
+                   0.0);
     }
     if (!in_front) continue;
-    epipole *= sign;
-    // In front of camera k too: (R (lambda x1 - c)) . xk = lambda (R x1) . xk - e . xk > 0.
+    const double norm = epipole.norm();
+    if (!(norm > 0.0) || !std::isfinite(norm)) continue;
+    PairRoot& root = (*roots)[count];
+    root.yaw = {c / w, sn / w};
+    // lambda_n = w numerator_n / (|e| denominator_n) for the unnormalised m_n and e.
+    const double unit = sign / norm;
+    root.epipole = unit * epipole;
     for (std::size_t n = 0; n < kNumTriplets; ++n) {
-      in_front =
-          in_front && root.depth[n] * (c * p[n] + sn * q[n] + s[n]) - epipole.dot(xk[n]) > 0.0;
+      root.depth[n] = w * unit * numerator[n] / denominator[n];
     }
-    if (!in_front || !root.depth.allFinite()) continue;
-    root.epipole = epipole;
+    if (!root.depth.allFinite()) continue;
     ++count;
   }
   return count;

@@ -273,56 +273,84 @@ int SolveUprightPair(const MinimalRays& x1, const MinimalRays& xk, std::array<Pa
   return count;
 }
 
-// A candidate of the decoupled solver between gravity-aligned frames: R_k = R_y(theta_k) and the
-// fourth column t_k of camera k = 2, 3.
-struct YawCandidate {
-  Yaw yaw2, yaw3;
-  Eigen::Vector3d t2, t3;
-};
-
-// The decoupled solver on aligned rays (steps 1-3 of trifocal_3pt.h): writes the candidates best
-// first and returns their count. Every candidate is finite: yaws from finite roots, unit epipoles,
-// finite kappa.
-int SolveDecoupledAligned(const MinimalRays& x1,
-                          const MinimalRays& x2,
-                          const MinimalRays& x3,
-                          std::array<YawCandidate, 16>* solutions) {
-  // Camera 2 sets the scale |c_2| = 1, undefined without parallax in pair (1,2); camera 3 may
-  // have none (c_3 = 0 is a valid pose).
-  if (internal::PairExplainedByYaw(x1, x2)) return 0;
-  std::array<PairRoot, 4> roots2, roots3;
-  const int count2 = SolveUprightPair(x1, x2, &roots2);
-  if (count2 == 0) return 0;
-  const int count3 = SolveUprightPair(x1, x3, &roots3);
-
+// The decoupled solver's result between gravity-aligned frames: the kept roots of both pairs and
+// the candidates, combinations (i2, i3) with the scale kappa of c_3, best first.
+struct DecoupledSolution {
   struct Candidate {
     double residual_squared, kappa;
     int i2, i3;
   };
+  std::array<PairRoot, 4> roots2, roots3;
   std::array<Candidate, 16> candidates;
+  int count2 = 0, count3 = 0, count = 0;
+};
+
+// The decoupled solver on aligned rays (steps 1-3 of trifocal_3pt.h): fills *solution and returns
+// its candidate count. Every candidate is finite: yaws from finite roots, unit epipoles, finite
+// kappa.
+int SolveDecoupledAligned(const MinimalRays& x1,
+                          const MinimalRays& x2,
+                          const MinimalRays& x3,
+                          DecoupledSolution* solution) {
+  solution->count = 0;
+  // Camera 2 sets the scale |c_2| = 1, undefined without parallax in pair (1,2); camera 3 may
+  // have none (c_3 = 0 is a valid pose).
+  if (internal::PairExplainedByYaw(x1, x2)) return 0;
+  const int count2 = SolveUprightPair(x1, x2, &solution->roots2);
+  solution->count2 = count2;
+  if (count2 == 0) return 0;
+  const int count3 = SolveUprightPair(x1, x3, &solution->roots3);
+  solution->count3 = count3;
+
+  std::array<double, 4> inverse_squared_norm2, inverse_squared_norm3;
+  for (int i = 0; i < count2; ++i) {
+    inverse_squared_norm2[i] = 1.0 / solution->roots2[i].depth.squaredNorm();
+  }
+  for (int i = 0; i < count3; ++i) {
+    inverse_squared_norm3[i] = 1.0 / solution->roots3[i].depth.squaredNorm();
+  }
   int count = 0;
   for (int i2 = 0; i2 < count2; ++i2) {
-    const Eigen::Vector3d& depth2 = roots2[i2].depth;
+    const Eigen::Vector3d& depth2 = solution->roots2[i2].depth;
     for (int i3 = 0; i3 < count3; ++i3) {
-      const Eigen::Vector3d& depth3 = roots3[i3].depth;
+      const Eigen::Vector3d& depth3 = solution->roots3[i3].depth;
       // Scale of c_3 that best matches the depths of pair (1,2); the depth-ratio residual
       // |lambda_2 - kappa lambda_3| / |lambda_2| ranks (compared squared).
-      const double kappa = depth2.dot(depth3) / depth3.squaredNorm();
+      const double kappa = depth2.dot(depth3) * inverse_squared_norm3[i3];
       const double residual_squared =
-          (depth2 - kappa * depth3).squaredNorm() / depth2.squaredNorm();
+          (depth2 - kappa * depth3).squaredNorm() * inverse_squared_norm2[i2];
       if (!(kappa > 0.0) || !std::isfinite(kappa) || !std::isfinite(residual_squared)) continue;
-      candidates[count++] = {residual_squared, kappa, i2, i3};
+      solution->candidates[count++] = {residual_squared, kappa, i2, i3};
     }
   }
   SortByKey(
-      count, [](const Candidate& c) { return c.residual_squared; }, &candidates);
-  for (int i = 0; i < count; ++i) {
-    const PairRoot& root2 = roots2[candidates[i].i2];
-    const PairRoot& root3 = roots3[candidates[i].i3];
-    // t = -R c = -epipole (|c_2| = 1, c_3 scaled by kappa).
-    (*solutions)[i] = {root2.yaw, root3.yaw, -root2.epipole, -candidates[i].kappa * root3.epipole};
-  }
+      count, [](const DecoupledSolution::Candidate& c) { return c.residual_squared; },
+      &solution->candidates);
+  solution->count = count;
   return count;
+}
+
+// Appends the candidates of `solution` to *solutions, best first, and returns their count.
+// make_pose(camera, yaw, t) gives the pose of camera k = camera + 1 from its aligned yaw and fourth
+// column t = -R_k c_k = -epipole (|c_2| = 1, c_3 scaled by kappa). It is linear in t, so each
+// root's pose is made once and the candidates only scale camera 3's t by kappa.
+template <typename MakePose>
+int AppendCandidates(const DecoupledSolution& solution,
+                     MakePose&& make_pose,
+                     std::vector<ThreeViewPose>* solutions) {
+  std::array<CameraPose, 4> poses2, poses3;
+  for (int i = 0; i < solution.count2; ++i) {
+    poses2[i] = make_pose(1, solution.roots2[i].yaw, -solution.roots2[i].epipole);
+  }
+  for (int i = 0; i < solution.count3; ++i) {
+    poses3[i] = make_pose(2, solution.roots3[i].yaw, -solution.roots3[i].epipole);
+  }
+  for (int i = 0; i < solution.count; ++i) {
+    const DecoupledSolution::Candidate& candidate = solution.candidates[i];
+    const CameraPose& pose3 = poses3[candidate.i3];
+    solutions->push_back({poses2[candidate.i2], {pose3.R, candidate.kappa * pose3.t}});
+  }
+  return solution.count;
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -503,18 +531,18 @@ int SolveTrifocal3pt(const Rays& x1,
                      std::vector<ThreeViewPose>* solutions) {
   internal::CheckTriplets("SolveTrifocal3pt", kNumTriplets, kNumTriplets, x1, x2, x3, solutions);
   solutions->clear();
-  std::array<YawCandidate, 16> candidates;
-  const int count = SolveDecoupledAligned({x1[0], x1[1], x1[2]}, {x2[0], x2[1], x2[2]},
-                                          {x3[0], x3[1], x3[2]}, &candidates);
-  for (int i = 0; i < count; ++i) {
-    const YawCandidate& candidate = candidates[i];
-    solutions->push_back(
-        {{candidate.yaw2.Matrix(), candidate.t2}, {candidate.yaw3.Matrix(), candidate.t3}});
-  }
-  return count;
+  DecoupledSolution solution;
+  SolveDecoupledAligned({x1[0], x1[1], x1[2]}, {x2[0], x2[1], x2[2]}, {x3[0], x3[1], x3[2]},
+                        &solution);
+  return AppendCandidates(
+      solution,
+      [](int, const Yaw& yaw, const Eigen::Vector3d& t) {
+        return CameraPose{yaw.Matrix(), t};
+      },
+      solutions);
 }
 
-// Aligns the rays into fixed storage and maps each candidate back in closed form from its yaws
+// Aligns the rays into fixed storage and maps each root back in closed form from its yaw
 // (GravityFrames, derivations.md section 2.2): no heap allocation, no 3x3 products per candidate.
 int SolveTrifocal3pt(const Rays& x1,
                      const Rays& x2,
@@ -533,15 +561,14 @@ int SolveTrifocal3pt(const Rays& x1,
     aligned[1][n] = frames.alignment(1) * x2[n];
     aligned[2][n] = frames.alignment(2) * x3[n];
   }
-  std::array<YawCandidate, 16> candidates;
-  const int count = SolveDecoupledAligned(aligned[0], aligned[1], aligned[2], &candidates);
-  for (int i = 0; i < count; ++i) {
-    const YawCandidate& candidate = candidates[i];
-    solutions->push_back(
-        {frames.UnalignYawPose(1, candidate.yaw2.c, candidate.yaw2.s, candidate.t2),
-         frames.UnalignYawPose(2, candidate.yaw3.c, candidate.yaw3.s, candidate.t3)});
-  }
-  return count;
+  DecoupledSolution solution;
+  SolveDecoupledAligned(aligned[0], aligned[1], aligned[2], &solution);
+  return AppendCandidates(
+      solution,
+      [&frames](int camera, const Yaw& yaw, const Eigen::Vector3d& t) {
+        return frames.UnalignYawPose(camera, yaw.c, yaw.s, t);
+      },
+      solutions);
 }
 
 int SolveTrifocal3ptSextic(const Rays& x1,

@@ -27,11 +27,20 @@ Eigen::Matrix3d GravityAlignmentFromGravity(const Eigen::Vector3d& gravity_in_ca
   // Rows of R: R g = e_y makes the middle row g^T; the first row is the camera axis least parallel
   // to g (x, or z for a camera rolled by 90 deg) made orthogonal to g, the last completes a
   // right-handed frame. Exact to rounding for any g, including g along -y; R = I when g = e_y.
-  const Eigen::Vector3d down = gravity_in_cam / norm;
-  const Eigen::Vector3d axis =
-      std::abs(down.x()) < std::abs(down.z()) ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
-  Eigen::Vector3d first = (axis - axis.dot(down) * down).normalized();
-  if (axis.z() != 0.0) first = down.cross(first);  // rotate z-based choice into the x slot
+  // Written out for unit d = g / |g|: x - d_x d = (d_y^2 + d_z^2, -d_x d_y, -d_x d_z) has length
+  // sqrt(d_y^2 + d_z^2); for the z axis, d x (z - d_z d) = d x z = (d_y, -d_x, 0) with length
+  // sqrt(d_x^2 + d_y^2) (one square root, no projection, on every solver call with gravity).
+  const Eigen::Vector3d down = gravity_in_cam * (1.0 / norm);
+  const double dx = down.x(), dy = down.y(), dz = down.z();
+  Eigen::Vector3d first;
+  if (std::abs(dx) < std::abs(dz)) {
+    const double length = std::sqrt(dy * dy + dz * dz);
+    const double factor = -dx / length;
+    first = Eigen::Vector3d(length, factor * dy, factor * dz);
+  } else {
+    const double inverse_length = 1.0 / std::sqrt(dx * dx + dy * dy);
+    first = Eigen::Vector3d(inverse_length * dy, -inverse_length * dx, 0.0);
+  }
   Eigen::Matrix3d R;
   R.row(0) = first.transpose();
   R.row(1) = down.transpose();

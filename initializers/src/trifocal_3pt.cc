@@ -338,17 +338,23 @@ template <typename MakePose>
 int AppendCandidates(const DecoupledSolution& solution,
                      MakePose&& make_pose,
                      std::vector<ThreeViewPose>* solutions) {
-  std::array<CameraPose, 4> poses2, poses3;
+  // Plain Eigen storage, left uninitialised (a CameraPose array would be set to identities first).
+  std::array<Eigen::Matrix3d, 4> R2, R3;
+  std::array<Eigen::Vector3d, 4> t2, t3;
   for (int i = 0; i < solution.count2; ++i) {
-    poses2[i] = make_pose(1, solution.roots2[i].yaw, -solution.roots2[i].epipole);
+    const CameraPose pose = make_pose(1, solution.roots2[i].yaw, -solution.roots2[i].epipole);
+    R2[i] = pose.R;
+    t2[i] = pose.t;
   }
   for (int i = 0; i < solution.count3; ++i) {
-    poses3[i] = make_pose(2, solution.roots3[i].yaw, -solution.roots3[i].epipole);
+    const CameraPose pose = make_pose(2, solution.roots3[i].yaw, -solution.roots3[i].epipole);
+    R3[i] = pose.R;
+    t3[i] = pose.t;
   }
   for (int i = 0; i < solution.count; ++i) {
     const DecoupledSolution::Candidate& candidate = solution.candidates[i];
-    const CameraPose& pose3 = poses3[candidate.i3];
-    solutions->push_back({poses2[candidate.i2], {pose3.R, candidate.kappa * pose3.t}});
+    solutions->push_back({{R2[candidate.i2], t2[candidate.i2]},
+                          {R3[candidate.i3], candidate.kappa * t3[candidate.i3]}});
   }
   return solution.count;
 }

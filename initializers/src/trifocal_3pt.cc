@@ -231,29 +231,46 @@ int SolveUprightPair(const MinimalRays& x1, const MinimalRays& xk, std::array<Pa
     const double t_squared = t[i] * t[i];
     const double w = 1.0 + t_squared, c_phi = 1.0 - t_squared, s_phi = 2.0 * t[i];
     const double c = c_phi * offset.c - s_phi * offset.s, sn = s_phi * offset.c + c_phi * offset.s;
-    // The epipole R_k c_k is orthogonal to the three epipolar normals m_n: take the best
-    // conditioned cross product of two of them (normalised once the root is kept).
-    std::array<Eigen::Vector3d, 3> m;
-    for (std::size_t n = 0; n < kNumTriplets; ++n) m[n] = c * P[n] + sn * Q[n] + w * S[n];
-    Eigen::Vector3d epipole = m[0].cross(m[1]);
-    for (const Eigen::Vector3d& candidate : {m[1].cross(m[2]), m[2].cross(m[0])}) {
-      if (candidate.squaredNorm() > epipole.squaredNorm()) epipole = candidate;
+    // m_n by components (S_n.y = 0), in plain scalars: Eigen's 3-vectors cost shuffles here.
+    std::array<double, 3> mx, my, mz;
+    for (std::size_t n = 0; n < kNumTriplets; ++n) {
+      mx[n] = c * P[n].x() + sn * Q[n].x() + w * S[n].x();
+      my[n] = c * P[n].y() + sn * Q[n].y();
+      mz[n] = c * P[n].z() + sn * Q[n].z() + w * S[n].z();
     }
+    // The epipole R_k c_k is orthogonal to the three epipolar normals m_n: take the best
+    // conditioned of the cross products m_n x m_(n+1) (normalised once the root is kept).
+    std::array<double, 3> ex, ey, ez, squared_norm;
+    for (std::size_t n = 0; n < kNumTriplets; ++n) {
+      const std::size_t j = n == 2 ? 0 : n + 1;
+      ex[n] = my[n] * mz[j] - mz[n] * my[j];
+      ey[n] = mz[n] * mx[j] - mx[n] * mz[j];
+      ez[n] = mx[n] * my[j] - my[n] * mx[j];
+      squared_norm[n] = ex[n] * ex[n] + ey[n] * ey[n] + ez[n] * ez[n];
+    }
+    std::size_t best = squared_norm[1] > squared_norm[0] ? 1 : 0;
+    best = squared_norm[2] > squared_norm[best] ? 2 : best;
+    const Eigen::Vector3d epipole(ex[best], ey[best], ez[best]);
     // View-1 depths lambda_n = ((xk x e) . (xk x R x1)) / |xk x R x1|^2, xk x R x1 = -m_n
     // (derivations.md section 4.6), and in front of camera k too: (R (lambda x1 - c)) . xk =
     // lambda (R x1) . xk - e . xk > 0. The sign of c_k is free: both tests hold for one of the two
     // signs, which the first numerator decides; multiplied by |m_n|^2 > 0, they need no division.
-    std::array<double, 3> numerator, denominator;
+    std::array<double, 3> numerator, denominator, epipole_dot;
     bool in_front = true;
     for (std::size_t n = 0; n < kNumTriplets; ++n) {
-      numerator[n] = -xk[n].cross(epipole).dot(m[n]);
-      denominator[n] = m[n].squaredNorm();
+      const double a = xk[n].x(), b = xk[n].y(), d = xk[n].z();
+      // -(xk x e) . m
+      numerator[n] = -((b * epipole.z() - d * epipole.y()) * mx[n] +
+                       (d * epipole.x() - a * epipole.z()) * my[n] +
+                       (a * epipole.y() - b * epipole.x()) * mz[n]);
+      denominator[n] = mx[n] * mx[n] + my[n] * my[n] + mz[n] * mz[n];
+      epipole_dot[n] = a * epipole.x() + b * epipole.y() + d * epipole.z();
     }
     const double sign = numerator[0] < 0.0 ? -1.0 : 1.0;
     for (std::size_t n = 0; n < kNumTriplets; ++n) {
       in_front &= (sign * numerator[n] > 0.0) & (denominator[n] > 0.0) &
                   (sign * (numerator[n] * (c * p[n] + sn * q[n] + w * s[n]) -
-                           denominator[n] * epipole.dot(xk[n])) >
+                           denominator[n] * epipole_dot[n]) >
                    0.0);
     }
     if (!in_front) continue;
@@ -330,31 +347,22 @@ int SolveDecoupledAligned(const MinimalRays& x1,
   return count;
 }
 
-// Appends the candidates of `solution` to *solutions, best first, and returns their count.
+// Writes the candidates of `solution` to *solutions (cleared), best first, and returns their count.
 // make_pose(camera, yaw, t) gives the pose of camera k = camera + 1 from its aligned yaw and fourth
-// column t = -R_k c_k = -epipole (|c_2| = 1, c_3 scaled by kappa). It is linear in t, so each
-// root's pose is made once and the candidates only scale camera 3's t by kappa.
+// column t = -R_k c_k = -epipole (|c_2| = 1, c_3 scaled by kappa). The poses are written in place
+// (no temporary ThreeViewPose per candidate).
 template <typename MakePose>
-int AppendCandidates(const DecoupledSolution& solution,
-                     MakePose&& make_pose,
-                     std::vector<ThreeViewPose>* solutions) {
-  // Plain Eigen storage, left uninitialised (a CameraPose array would be set to identities first).
-  std::array<Eigen::Matrix3d, 4> R2, R3;
-  std::array<Eigen::Vector3d, 4> t2, t3;
-  for (int i = 0; i < solution.count2; ++i) {
-    const CameraPose pose = make_pose(1, solution.roots2[i].yaw, -solution.roots2[i].epipole);
-    R2[i] = pose.R;
-    t2[i] = pose.t;
-  }
-  for (int i = 0; i < solution.count3; ++i) {
-    const CameraPose pose = make_pose(2, solution.roots3[i].yaw, -solution.roots3[i].epipole);
-    R3[i] = pose.R;
-    t3[i] = pose.t;
-  }
+int WriteCandidates(const DecoupledSolution& solution,
+                    MakePose&& make_pose,
+                    std::vector<ThreeViewPose>* solutions) {
+  solutions->resize(solution.count);
   for (int i = 0; i < solution.count; ++i) {
     const DecoupledSolution::Candidate& candidate = solution.candidates[i];
-    solutions->push_back({{R2[candidate.i2], t2[candidate.i2]},
-                          {R3[candidate.i3], candidate.kappa * t3[candidate.i3]}});
+    const PairRoot& root2 = solution.roots2[candidate.i2];
+    const PairRoot& root3 = solution.roots3[candidate.i3];
+    ThreeViewPose& pose = (*solutions)[i];
+    pose.cam2_from_cam1 = make_pose(1, root2.yaw, -root2.epipole);
+    pose.cam3_from_cam1 = make_pose(2, root3.yaw, -candidate.kappa * root3.epipole);
   }
   return solution.count;
 }
@@ -536,11 +544,10 @@ int SolveTrifocal3pt(const Rays& x1,
                      const Rays& x3,
                      std::vector<ThreeViewPose>* solutions) {
   internal::CheckTriplets("SolveTrifocal3pt", kNumTriplets, kNumTriplets, x1, x2, x3, solutions);
-  solutions->clear();
   DecoupledSolution solution;
   SolveDecoupledAligned({x1[0], x1[1], x1[2]}, {x2[0], x2[1], x2[2]}, {x3[0], x3[1], x3[2]},
                         &solution);
-  return AppendCandidates(
+  return WriteCandidates(
       solution,
       [](int, const Yaw& yaw, const Eigen::Vector3d& t) {
         return CameraPose{yaw.Matrix(), t};
@@ -560,7 +567,6 @@ int SolveTrifocal3pt(const Rays& x1,
   const internal::GravityFrames frames("SolveTrifocal3pt", gravity_in_cam1, gravity_in_cam2,
                                        gravity_in_cam3);
   internal::CheckTriplets("SolveTrifocal3pt", kNumTriplets, kNumTriplets, x1, x2, x3, solutions);
-  solutions->clear();
   std::array<MinimalRays, 3> aligned;
   for (std::size_t n = 0; n < kNumTriplets; ++n) {
     aligned[0][n] = frames.alignment(0) * x1[n];
@@ -569,7 +575,7 @@ int SolveTrifocal3pt(const Rays& x1,
   }
   DecoupledSolution solution;
   SolveDecoupledAligned(aligned[0], aligned[1], aligned[2], &solution);
-  return AppendCandidates(
+  return WriteCandidates(
       solution,
       [&frames](int camera, const Yaw& yaw, const Eigen::Vector3d& t) {
         return frames.UnalignYawPose(camera, yaw.c, yaw.s, t);

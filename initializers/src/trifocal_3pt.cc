@@ -183,25 +183,37 @@ struct TrigQuadratic {
   }
 };
 
-// Real roots of the pair (1, k) that pass cheirality. Returns 0 when det[m_1; m_2; m_3] vanishes
-// for every yaw (two of the three triplets coincide, or all three points coincide): the pair then
-// has a continuum of solutions, not a few.
-int SolveUprightPair(const MinimalRays& x1, const MinimalRays& xk, std::array<PairRoot, 4>* roots) {
-  // m_n(theta) = cos P_n + sin Q_n + S_n with P_n = A_n x xk_n, Q_n = B_n x xk_n, S_n = C_n x xk_n
-  // (TrigLinear), written out for the zeros of A, B, C (S_n has no y part); likewise
-  // (R_y(theta) x1_n) . xk_n = cos p_n + sin q_n + s_n.
+// The upright two-view problem of pair (1, k): the epipolar normals m_n(theta) = cos P_n + sin
+// Q_n + S_n and the real roots t of det[m_1; m_2; m_3] in t = tan((theta - theta_0)/2).
+struct UprightPair {
   std::array<Eigen::Vector3d, 3> P, Q, S;
+  // (R_y(theta) x1_n) . xk_n = cos p_n + sin q_n + s_n.
   std::array<double, 3> p, q, s;
+  const Offset* offset = &kOffsets[0];
+  std::array<double, 4> t;
+  int num_t = 0;
+};
+
+// Sets up pair (1, k) and solves its quartic. No roots (num_t = 0) when det[m_1; m_2; m_3]
+// vanishes for every yaw (two of the three triplets coincide, or all three points coincide): the
+// pair then has a continuum of solutions, not a few.
+void SolveUprightQuartic(const MinimalRays& x1, const MinimalRays& xk, UprightPair* pair) {
+  // P_n = A_n x xk_n, Q_n = B_n x xk_n, S_n = C_n x xk_n (TrigLinear), written out for the zeros
+  // of A, B, C (S_n has no y part).
+  std::array<Eigen::Vector3d, 3>& P = pair->P;
+  std::array<Eigen::Vector3d, 3>& Q = pair->Q;
+  std::array<Eigen::Vector3d, 3>& S = pair->S;
   for (std::size_t n = 0; n < kNumTriplets; ++n) {
     const double x = x1[n].x(), y = x1[n].y(), z = x1[n].z();
     const double a = xk[n].x(), b = xk[n].y(), c = xk[n].z();
     P[n] = Eigen::Vector3d(-z * b, z * a - x * c, x * b);
     Q[n] = Eigen::Vector3d(x * b, -x * a - z * c, z * b);
     S[n] = Eigen::Vector3d(y * c, 0.0, -y * a);
-    p[n] = x * a + z * c;
-    q[n] = z * a - x * c;
-    s[n] = y * b;
+    pair->p[n] = x * a + z * c;
+    pair->q[n] = z * a - x * c;
+    pair->s[n] = y * b;
   }
+  pair->num_t = 0;
   const TrigQuadratic D = TrigQuadratic::FromNormals(P, Q, S);
   double squared_hadamard_bound = 1.0;  // prod_n |m_n|^2 at theta = 0, >= det^2 there
   for (std::size_t n = 0; n < kNumTriplets; ++n) {
@@ -214,16 +226,27 @@ int SolveUprightPair(const MinimalRays& x1, const MinimalRays& xk, std::array<Pa
   if (!(scale * scale >
         kMinRelativeDeterminant * kMinRelativeDeterminant * squared_hadamard_bound) ||
       !std::isfinite(scale)) {
-    return 0;
+    return;
   }
+  pair->offset = &ChooseOffset(kMinRelativeQuarticLeading, scale,
+                               [&D](const Offset& theta0) { return D.AtOffsetPlusPi(theta0); });
+  pair->num_t = internal::SolveQuarticReal(D.Quartic(*pair->offset), &pair->t, kQuarticNewtonSteps,
+                                           kMaxImaginaryPart);
+}
 
-  const Offset& offset =
-      ChooseOffset(kMinRelativeQuarticLeading, scale,
-                   [&D](const Offset& theta0) { return D.AtOffsetPlusPi(theta0); });
-  std::array<double, 4> t;
-  const int num_t =
-      internal::SolveQuarticReal(D.Quartic(offset), &t, kQuarticNewtonSteps, kMaxImaginaryPart);
-
+// The roots of pair (1, k) that pass cheirality.
+int UprightPairRoots(const MinimalRays& xk,
+                     const UprightPair& pair,
+                     std::array<PairRoot, 4>* roots) {
+  const std::array<Eigen::Vector3d, 3>& P = pair.P;
+  const std::array<Eigen::Vector3d, 3>& Q = pair.Q;
+  const std::array<Eigen::Vector3d, 3>& S = pair.S;
+  const std::array<double, 3>& p = pair.p;
+  const std::array<double, 3>& q = pair.q;
+  const std::array<double, 3>& s = pair.s;
+  const Offset& offset = *pair.offset;
+  const std::array<double, 4>& t = pair.t;
+  const int num_t = pair.num_t;
   int count = 0;
   for (int i = 0; i < num_t; ++i) {
     // Everything below is homogeneous in w = 1 + t^2 > 0, so the yaw is carried unnormalised,
@@ -313,10 +336,15 @@ int SolveDecoupledAligned(const MinimalRays& x1,
   // Camera 2 sets the scale |c_2| = 1, undefined without parallax in pair (1,2); camera 3 may
   // have none (c_3 = 0 is a valid pose).
   if (internal::PairExplainedByYaw(x1, x2)) return 0;
-  const int count2 = SolveUprightPair(x1, x2, &solution->roots2);
+  // Both quartics first: their long chains of dependent divisions and roots are independent, and
+  // back to back the processor overlaps them.
+  UprightPair pair2, pair3;
+  SolveUprightQuartic(x1, x2, &pair2);
+  SolveUprightQuartic(x1, x3, &pair3);
+  const int count2 = UprightPairRoots(x2, pair2, &solution->roots2);
   solution->count2 = count2;
   if (count2 == 0) return 0;
-  const int count3 = SolveUprightPair(x1, x3, &solution->roots3);
+  const int count3 = UprightPairRoots(x3, pair3, &solution->roots3);
   solution->count3 = count3;
 
   std::array<double, 4> inverse_squared_norm2, inverse_squared_norm3;

@@ -27,19 +27,21 @@ Eigen::Matrix3d GravityAlignmentFromGravity(const Eigen::Vector3d& gravity_in_ca
   // Rows of R: R g = e_y makes the middle row g^T; the first row is the camera axis least parallel
   // to g (x, or z for a camera rolled by 90 deg) made orthogonal to g, the last completes a
   // right-handed frame. Exact to rounding for any g, including g along -y; R = I when g = e_y.
-  // Written out for unit d = g / |g|: x - d_x d = (d_y^2 + d_z^2, -d_x d_y, -d_x d_z) has length
-  // sqrt(d_y^2 + d_z^2); for the z axis, d x (z - d_z d) = d x z = (d_y, -d_x, 0) with length
-  // sqrt(d_x^2 + d_y^2) (one square root, no projection, on every solver call with gravity).
+  // Written out so that the two square roots are independent (every solver call with gravity
+  // runs this): x - (x.d) d for d = g / |g| is (g_y^2 + g_z^2, -g_x g_y, -g_x g_z) / |g|^2, of
+  // length sqrt(g_y^2 + g_z^2) / |g|; for the z axis, d x (z - (z.d) d) = d x z, whose
+  // normalisation is (g_y, -g_x, 0) / sqrt(g_x^2 + g_y^2). Each squared length is at least half
+  // of |g|^2 by the choice of axis.
+  const double gx = gravity_in_cam.x(), gy = gravity_in_cam.y(), gz = gravity_in_cam.z();
   const Eigen::Vector3d down = gravity_in_cam * (1.0 / norm);
-  const double dx = down.x(), dy = down.y(), dz = down.z();
   Eigen::Vector3d first;
-  if (std::abs(dx) < std::abs(dz)) {
-    const double length = std::sqrt(dy * dy + dz * dz);
-    const double factor = -dx / length;
-    first = Eigen::Vector3d(length, factor * dy, factor * dz);
+  if (std::abs(gx) < std::abs(gz)) {
+    const double squared_length = gy * gy + gz * gz;
+    const double factor = 1.0 / (norm * std::sqrt(squared_length));
+    first = Eigen::Vector3d(squared_length * factor, -gx * gy * factor, -gx * gz * factor);
   } else {
-    const double inverse_length = 1.0 / std::sqrt(dx * dx + dy * dy);
-    first = Eigen::Vector3d(inverse_length * dy, -inverse_length * dx, 0.0);
+    const double factor = 1.0 / std::sqrt(gx * gx + gy * gy);
+    first = Eigen::Vector3d(gy * factor, -gx * factor, 0.0);
   }
   Eigen::Matrix3d R;
   R.row(0) = first.transpose();

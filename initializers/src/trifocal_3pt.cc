@@ -375,22 +375,20 @@ int SolveDecoupledAligned(const MinimalRays& x1,
   return count;
 }
 
-// Writes the candidates of `solution` to *solutions (cleared), best first, and returns their count.
-// make_pose(camera, yaw, t) gives the pose of camera k = camera + 1 from its aligned yaw and fourth
-// column t = -R_k c_k = -epipole (|c_2| = 1, c_3 scaled by kappa). The poses are written in place
-// (no temporary ThreeViewPose per candidate).
-template <typename MakePose>
+// Writes the candidates of `solution` to *solutions (cleared), best first, in place, and returns
+// their count. write_pose(camera, index, scale, pose) writes the pose of camera k = camera + 1 for
+// its pair root `index`, whose fourth column is t = -scale * epipole (scale 1 for camera 2, |c_2| =
+// 1, and kappa for camera 3).
+template <typename WritePose>
 int WriteCandidates(const DecoupledSolution& solution,
-                    MakePose&& make_pose,
+                    WritePose&& write_pose,
                     std::vector<ThreeViewPose>* solutions) {
   solutions->resize(solution.count);
   for (int i = 0; i < solution.count; ++i) {
     const DecoupledSolution::Candidate& candidate = solution.candidates[i];
-    const PairRoot& root2 = solution.roots2[candidate.i2];
-    const PairRoot& root3 = solution.roots3[candidate.i3];
     ThreeViewPose& pose = (*solutions)[i];
-    pose.cam2_from_cam1 = make_pose(1, root2.yaw, -root2.epipole);
-    pose.cam3_from_cam1 = make_pose(2, root3.yaw, -candidate.kappa * root3.epipole);
+    write_pose(1, candidate.i2, 1.0, &pose.cam2_from_cam1);
+    write_pose(2, candidate.i3, candidate.kappa, &pose.cam3_from_cam1);
   }
   return solution.count;
 }
@@ -575,10 +573,13 @@ int SolveTrifocal3pt(const Rays& x1,
   DecoupledSolution solution;
   SolveDecoupledAligned({x1[0], x1[1], x1[2]}, {x2[0], x2[1], x2[2]}, {x3[0], x3[1], x3[2]},
                         &solution);
+  // Each candidate's poses straight from its roots (cheaper than staging them per root).
   return WriteCandidates(
       solution,
-      [](int, const Yaw& yaw, const Eigen::Vector3d& t) {
-        return CameraPose{yaw.Matrix(), t};
+      [&solution](int camera, int index, double scale, CameraPose* pose) {
+        const PairRoot& root = camera == 1 ? solution.roots2[index] : solution.roots3[index];
+        pose->R = root.yaw.Matrix();
+        pose->t = -scale * root.epipole;
       },
       solutions);
 }
@@ -603,10 +604,24 @@ int SolveTrifocal3pt(const Rays& x1,
   }
   DecoupledSolution solution;
   SolveDecoupledAligned(aligned[0], aligned[1], aligned[2], &solution);
+  // Each root mapped back once (candidates share roots; t is linear in the scale), in plain Eigen
+  // storage left uninitialised.
+  std::array<std::array<Eigen::Matrix3d, 4>, 2> R;
+  std::array<std::array<Eigen::Vector3d, 4>, 2> t;
+  for (int camera = 1; camera <= 2; ++camera) {
+    const int count = camera == 1 ? solution.count2 : solution.count3;
+    for (int i = 0; i < count; ++i) {
+      const PairRoot& root = camera == 1 ? solution.roots2[i] : solution.roots3[i];
+      const CameraPose pose = frames.UnalignYawPose(camera, root.yaw.c, root.yaw.s, -root.epipole);
+      R[camera - 1][i] = pose.R;
+      t[camera - 1][i] = pose.t;
+    }
+  }
   return WriteCandidates(
       solution,
-      [&frames](int camera, const Yaw& yaw, const Eigen::Vector3d& t) {
-        return frames.UnalignYawPose(camera, yaw.c, yaw.s, t);
+      [&R, &t](int camera, int index, double scale, CameraPose* pose) {
+        pose->R = R[camera - 1][index];
+        pose->t = scale * t[camera - 1][index];
       },
       solutions);
 }

@@ -90,8 +90,8 @@ void PolishRootNewton(const std::array<double, M>& c, int steps, double* t) {
 }
 
 // Largest real root of the monic cubic x^3 + a x^2 + b x + c, in closed form (Cardano when there is
-// one real root, the trigonometric form when there are three, with cos(acos(.)/3) replaced by an
-// interpolant and a Halley step), polished by two guarded Newton steps.
+// one real root, polished by two guarded Newton steps; the trigonometric form when there are three,
+// with cos(acos(.)/3) from an interpolant and a Halley step, accurate to rounding without polish).
 double LargestRealCubicRoot(double a, double b, double c);
 
 // Real roots of a quartic c[0] + ... + c[4] t^4 with c[4] != 0 (the caller makes sure it is not

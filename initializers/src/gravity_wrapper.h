@@ -8,6 +8,7 @@
 #include <array>
 #include <vector>
 
+#include "gravity_alignment.h"
 #include "input_checks.h"
 #include "trigrav/initializers/camera_pose.h"
 #include "trigrav/initializers/gravity.h"
@@ -71,7 +72,7 @@ class GravityFrames {
                                    const char* name,
                                    const Eigen::Vector3d& gravity) {
     CheckGravity(solver, name, gravity);
-    return GravityAlignmentFromGravity(gravity);
+    return AlignmentFromUsableGravity(gravity, gravity.norm());
   }
 
   std::array<Eigen::Matrix3d, 3> alignment_;

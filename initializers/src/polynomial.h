@@ -97,8 +97,8 @@ double LargestRealCubicRoot(double a, double b, double c);
 // Real roots of a quartic c[0] + ... + c[4] t^4 with c[4] != 0 (the caller makes sure it is not
 // tiny relative to the other coefficients), in closed form: Ferrari's method (the quartic as a
 // product of two quadratics through the largest root of the resolvent cubic), then up to
-// `newton_steps` guarded Newton steps per root on the quartic itself (they stop once a step no
-// longer lowers |q(t)|; one or two suffice except near double roots). A quadratic factor whose
+// `newton_steps` guarded Newton steps per root on the quartic itself (PolishRootNewton; usually
+// the first is already converged and the only one). A quadratic factor whose
 // roots are complex with |Im t| <= max_imag (1 + (Re t)^2) (or only by rounding) contributes its
 // real part once: for a half-angle tangent t = tan(phi/2) that bounds the imaginary part of phi by
 // about 2 max_imag wherever the root lies. Returns the count (<= 4); order unspecified.

@@ -54,16 +54,17 @@ constexpr double kMinRelativeLeading = 1e-2;
 // the root sum then costs the other roots digits: at 1e-2 a scene with roots near 199 and two 5e-5
 // apart near 0.04 lost the pair (a 0.03 deg error noise-free).
 constexpr double kMinRelativeQuarticLeading = 0.1;
-// Decoupled solver: at most this many guarded Newton steps polish each quartic root (usually 1-2
-// are taken; near-double roots need more).
+// Decoupled solver: at most this many guarded Newton steps polish each quartic root (usually one,
+// taken unchecked once converged; near-double roots need more).
 constexpr int kQuarticNewtonSteps = 6;
-// Decoupled solver: a complex pair of quartic roots with |Im t| below this also gives a candidate,
-// at its real part (about where the epipolar constraints of the pair come closest to consistent).
-// Noise turns near-double real roots, often the true one among them, into such pairs. On the
-// synthetic scenes of derivations.md section 8.5 at 1 px this cuts the scenes without any candidate
-// from 5.3 % to 0.9 % and the median rotation error of the best-ranked candidate from 1.15 to 0.95
-// deg, for 0.2 more candidates per call noise-free (0.6 at 1 px). Exact roots are unaffected.
-// trigrav's own addition.
+// Decoupled solver: a complex pair of quartic roots with |Im t| below this times 1 + (Re t)^2 (an
+// imaginary part of theta below about 0.2 wherever the Cayley offset puts the root) also gives a
+// candidate, at its real part (about where the epipolar constraints of the pair come closest to
+// consistent). Noise turns near-double real roots, often the true one among them, into such pairs.
+// On the synthetic scenes of derivations.md section 8.5 at 1 px this cuts the scenes without any
+// candidate from 5.3 % to 0.9 % and the median rotation error of the best-ranked candidate
+// from 1.15 to 0.95 deg, for 0.2 more candidates per call noise-free (0.6 at 1 px). Exact roots are
+// unaffected. trigrav's own addition.
 constexpr double kMaxImaginaryPart = 0.1;
 
 // Sorts the first `count` entries of a small array by key, ascending (insertion sort, no heap).

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "gravity_alignment.h"
+
 namespace trigrav {
 
 Eigen::Matrix3d RotationAboutY(double theta_rad) {
@@ -24,19 +26,7 @@ Eigen::Matrix3d GravityAlignmentFromGravity(const Eigen::Vector3d& gravity_in_ca
     throw std::invalid_argument(
         "trigrav: gravity direction is too long (its squared length overflows)");
   }
-  // Rows of R: R g = e_y makes the middle row g^T; the first row is the camera axis least parallel
-  // to g (x, or z for a camera rolled by 90 deg) made orthogonal to g, the last completes a
-  // right-handed frame. Exact to rounding for any g, including g along -y; R = I when g = e_y.
-  const Eigen::Vector3d down = gravity_in_cam / norm;
-  const Eigen::Vector3d axis =
-      std::abs(down.x()) < std::abs(down.z()) ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
-  Eigen::Vector3d first = (axis - axis.dot(down) * down).normalized();
-  if (axis.z() != 0.0) first = down.cross(first);  // rotate z-based choice into the x slot
-  Eigen::Matrix3d R;
-  R.row(0) = first.transpose();
-  R.row(1) = down.transpose();
-  R.row(2) = first.cross(down).transpose();
-  return R;
+  return internal::AlignmentFromUsableGravity(gravity_in_cam, norm);
 }
 
 Eigen::Matrix3d GravityAlignmentFromPitchRoll(double pitch_rad, double roll_rad) {

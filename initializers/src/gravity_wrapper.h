@@ -8,6 +8,7 @@
 #include <array>
 #include <vector>
 
+#include "gravity_alignment.h"
 #include "input_checks.h"
 #include "trigrav/initializers/camera_pose.h"
 #include "trigrav/initializers/gravity.h"
@@ -35,9 +36,14 @@ class GravityFrames {
     const Eigen::Matrix3d& A1 = alignment_[0];
     for (int k = 0; k < 2; ++k) {
       const Eigen::Matrix3d& Ak = alignment_[k + 1];
-      cos_part_[k] = Ak.row(0).transpose() * A1.row(0) + Ak.row(2).transpose() * A1.row(2);
-      sin_part_[k] = Ak.row(0).transpose() * A1.row(2) - Ak.row(2).transpose() * A1.row(0);
-      fixed_part_[k] = Ak.row(1).transpose() * A1.row(1);
+      // Entry by entry (Eigen would evaluate each outer product into a temporary).
+      for (int j = 0; j < 3; ++j) {
+        for (int i = 0; i < 3; ++i) {
+          cos_part_[k](i, j) = Ak(0, i) * A1(0, j) + Ak(2, i) * A1(2, j);
+          sin_part_[k](i, j) = Ak(0, i) * A1(2, j) - Ak(2, i) * A1(0, j);
+          fixed_part_[k](i, j) = Ak(1, i) * A1(1, j);
+        }
+      }
     }
   }
 
@@ -71,7 +77,7 @@ class GravityFrames {
                                    const char* name,
                                    const Eigen::Vector3d& gravity) {
     CheckGravity(solver, name, gravity);
-    return GravityAlignmentFromGravity(gravity);
+    return AlignmentFromUsableGravity(gravity, gravity.norm());
   }
 
   std::array<Eigen::Matrix3d, 3> alignment_;

@@ -227,17 +227,27 @@ double LargestRealCubicRoot(double a, double b, double c) {
   const double half_Q = 0.5 * Q;
   const double third_P = P / 3.0;
   const double discriminant = half_Q * half_Q + third_P * third_P * third_P;
-  double x;
-  if (discriminant > 0.0) {
-    // One real root (Cardano), u^3 = -Q/2 - sign(Q) sqrt(discriminant) to avoid cancellation.
-    const double u = std::cbrt(-half_Q - std::copysign(std::sqrt(discriminant), half_Q));
-    x = (u != 0.0 ? u - third_P / u : 0.0) - shift;
-  } else {
-    // Three real roots (trigonometric form, P <= 0); the largest is 2 r cos(phi / 3).
+  if (discriminant <= 0.0) {
+    // Three real roots (P <= 0): z = 2 r k with r = sqrt(-P/3) and k the largest root of
+    // 4 k^3 - 3 k = cos(phi) := -Q / (2 r^3), i.e. k = cos(phi / 3) in [1/2, 1], without
+    // trigonometric calls: with u = sqrt((1 + cos(phi)) / 2) = cos(phi / 2), k = cos(2/3 acos(u)),
+    // smooth on [0, 1]; a degree-4 interpolant at Chebyshev nodes (within 1.1e-5) and one Halley
+    // step on 4 k^3 - 3 k - cos(phi) give it to rounding, so no Newton polish follows.
     const double r = std::sqrt(std::max(-third_P, 0.0));
     const double cosine = r > 0.0 ? std::clamp(-half_Q / (r * r * r), -1.0, 1.0) : 0.0;
-    x = 2.0 * r * std::cos(std::acos(cosine) / 3.0) - shift;
+    const double u = std::sqrt(0.5 + 0.5 * cosine);
+    double k =
+        0.5000106084908351 +
+        u * (0.5768124795415822 +
+             u * (-0.10649398677496211 + u * (0.038352908445762925 - u * 0.008688352074050488)));
+    const double h = (4.0 * k * k - 3.0) * k - cosine, slope = 12.0 * k * k - 3.0;
+    const double denominator = 2.0 * slope * slope - 24.0 * h * k;
+    if (denominator > 0.0) k -= 2.0 * h * slope / denominator;
+    return 2.0 * r * k - shift;
   }
+  // One real root (Cardano), u^3 = -Q/2 - sign(Q) sqrt(discriminant) to avoid cancellation.
+  const double u = std::cbrt(-half_Q - std::copysign(std::sqrt(discriminant), half_Q));
+  double x = (u != 0.0 ? u - third_P / u : 0.0) - shift;
   PolishRootNewton(std::array<double, 4>{c, b, a, 1.0}, 2, &x);
   return x;
 }
@@ -247,7 +257,9 @@ int SolveQuarticReal(const std::array<double, 5>& c,
                      int newton_steps,
                      double max_imag) {
   // Monic t^4 + b t^3 + cc t^2 + d t + e, depressed by t = y - b/4: y^4 + p y^2 + q y + r.
-  const double b = c[3] / c[4], cc = c[2] / c[4], d = c[1] / c[4], e = c[0] / c[4];
+  const double inverse_leading = 1.0 / c[4];
+  const double b = c[3] * inverse_leading, cc = c[2] * inverse_leading, d = c[1] * inverse_leading,
+               e = c[0] * inverse_leading;
   const double shift = 0.25 * b;
   const double b2 = b * b;
   const double p = cc - 0.375 * b2;
@@ -274,9 +286,12 @@ int SolveQuarticReal(const std::array<double, 5>& c,
     // y^2 -/+ s y + (p/2 + m +/- q/(2s)) = 0 with s = sqrt(2m).
     const double s = std::sqrt(2.0 * m);
     const double offset = 0.5 * q / s;
+    const double real_plus = 0.5 * s - shift, real_minus = -0.5 * s - shift;
+    count += SolveMonicQuadratic(-s, 0.5 * p + m + offset, max_imag * (1.0 + real_plus * real_plus),
+                                 &y[count], &approximate[count]);
     count +=
-        SolveMonicQuadratic(-s, 0.5 * p + m + offset, max_imag, &y[count], &approximate[count]);
-    count += SolveMonicQuadratic(s, 0.5 * p + m - offset, max_imag, &y[count], &approximate[count]);
+        SolveMonicQuadratic(s, 0.5 * p + m - offset, max_imag * (1.0 + real_minus * real_minus),
+                            &y[count], &approximate[count]);
   } else {
     // q ~ 0: biquadratic y^4 + p y^2 + r, y^2 = z with z^2 + p z + r = 0.
     const double scale =

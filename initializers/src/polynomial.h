@@ -6,6 +6,7 @@
 #ifndef TRIGRAV_INITIALIZERS_SRC_POLYNOMIAL_H_
 #define TRIGRAV_INITIALIZERS_SRC_POLYNOMIAL_H_
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -62,16 +63,23 @@ double EvaluatePolynomial(const std::array<double, M>& c, double t) {
 }
 
 // Up to `steps` Newton steps on the polynomial from *t. A step is kept only if it lowers |p(t)|, so
-// a root estimate is never made worse (flat points near double roots stay where they are). Returns
-// |p(t)|.
+// a root estimate is never made worse (flat points near double roots stay where they are), except
+// that a step below 1e-10 max(1, |t|) is taken unchecked and ends the polish: the iteration is then
+// converging quadratically, the next step would be below rounding, and checking would cost one more
+// evaluation per root.
 template <std::size_t M>
-double PolishRootNewton(const std::array<double, M>& c, int steps, double* t) {
+void PolishRootNewton(const std::array<double, M>& c, int steps, double* t) {
   constexpr int kDegree = static_cast<int>(M) - 1;
+  constexpr double kConvergedStep = 1e-10;
   double slope = 0.0;
   double value = EvaluatePolynomial<1>(c.data(), kDegree, *t, &slope);
   for (int step = 0; step < steps && value != 0.0; ++step) {
     if (!(slope != 0.0)) break;
     const double next = *t - value / slope;
+    if (std::abs(next - *t) <= kConvergedStep * std::max(1.0, std::abs(*t))) {
+      *t = next;
+      return;
+    }
     double next_slope = 0.0;
     const double next_value = EvaluatePolynomial<1>(c.data(), kDegree, next, &next_slope);
     if (!(std::abs(next_value) < std::abs(value))) break;
@@ -79,21 +87,21 @@ double PolishRootNewton(const std::array<double, M>& c, int steps, double* t) {
     value = next_value;
     slope = next_slope;
   }
-  return std::abs(value);
 }
 
 // Largest real root of the monic cubic x^3 + a x^2 + b x + c, in closed form (Cardano when there is
-// one real root, the trigonometric form when there are three), polished by two guarded Newton
-// steps.
+// one real root, polished by two guarded Newton steps; the trigonometric form when there are three,
+// with cos(acos(.)/3) from an interpolant and a Halley step, accurate to rounding without polish).
 double LargestRealCubicRoot(double a, double b, double c);
 
 // Real roots of a quartic c[0] + ... + c[4] t^4 with c[4] != 0 (the caller makes sure it is not
 // tiny relative to the other coefficients), in closed form: Ferrari's method (the quartic as a
 // product of two quadratics through the largest root of the resolvent cubic), then up to
-// `newton_steps` guarded Newton steps per root on the quartic itself (they stop once a step no
-// longer lowers |q(t)|; one or two suffice except near double roots). A quadratic factor whose
-// roots are complex with imaginary part at most max_imag (or only by rounding) contributes its real
-// part once. Returns the count (<= 4); order unspecified.
+// `newton_steps` guarded Newton steps per root on the quartic itself (PolishRootNewton; usually
+// the first is already converged and the only one). A quadratic factor whose
+// roots are complex with |Im t| <= max_imag (1 + (Re t)^2) (or only by rounding) contributes its
+// real part once: for a half-angle tangent t = tan(phi/2) that bounds the imaginary part of phi by
+// about 2 max_imag wherever the root lies. Returns the count (<= 4); order unspecified.
 int SolveQuarticReal(const std::array<double, 5>& c,
                      std::array<double, 4>* roots,
                      int newton_steps = 6,

@@ -46,18 +46,25 @@ constexpr std::array<Offset, 9> kOffsets = {{
     {kCos8, kSin8, kSqrtHalf, kSqrtHalf},    // pi/8
     {kCos8, -kSin8, kSqrtHalf, -kSqrtHalf},  // -pi/8
 }};
-// The leading coefficient counts as tiny below this fraction of the largest coefficient.
+// The leading coefficient counts as tiny below this fraction of the largest coefficient: sextic
+// solver.
 constexpr double kMinRelativeLeading = 1e-2;
-// Decoupled solver: at most this many guarded Newton steps polish each quartic root (usually 1-2
-// are taken; near-double roots need more).
+// Decoupled solver: the same for the trigonometric coefficients of D (TrigQuadratic). Stricter,
+// since a small leading coefficient means a root of large |t|, and Ferrari's shift by a quarter of
+// the root sum then costs the other roots digits: at 1e-2 a scene with roots near 199 and two 5e-5
+// apart near 0.04 lost the pair (a 0.03 deg error noise-free).
+constexpr double kMinRelativeQuarticLeading = 0.1;
+// Decoupled solver: at most this many guarded Newton steps polish each quartic root (usually one,
+// taken unchecked once converged; near-double roots need more).
 constexpr int kQuarticNewtonSteps = 6;
-// Decoupled solver: a complex pair of quartic roots with |Im t| below this also gives a candidate,
-// at its real part (about where the epipolar constraints of the pair come closest to consistent).
-// Noise turns near-double real roots, often the true one among them, into such pairs. On the
-// synthetic scenes of derivations.md section 8.5 at 1 px this cuts the scenes without any candidate
-// from 5.3 % to 0.9 % and the median rotation error of the best-ranked candidate from 1.15 to 0.95
-// deg, for 0.2 more candidates per call noise-free (0.6 at 1 px). Exact roots are unaffected.
-// trigrav's own addition.
+// Decoupled solver: a complex pair of quartic roots with |Im t| below this times 1 + (Re t)^2 (an
+// imaginary part of theta below about 0.2 wherever the Cayley offset puts the root) also gives a
+// candidate, at its real part (about where the epipolar constraints of the pair come closest to
+// consistent). Noise turns near-double real roots, often the true one among them, into such pairs.
+// On the synthetic scenes of derivations.md section 8.5 at 1 px this cuts the scenes without any
+// candidate from 5.3 % to 0.9 % and the median rotation error of the best-ranked candidate
+// from 1.15 to 0.95 deg, for 0.2 more candidates per call noise-free (0.6 at 1 px). Exact roots are
+// unaffected. trigrav's own addition.
 constexpr double kMaxImaginaryPart = 0.1;
 
 // Sorts the first `count` entries of a small array by key, ascending (insertion sort, no heap).
@@ -97,15 +104,15 @@ struct TrigLinear {
 };
 
 // Picks the Cayley offset: the first of kOffsets whose leading coefficient (the value of the
-// trigonometric polynomial at theta_0 + pi, evaluated by `leading`) is not tiny relative to
-// `scale`, else the one with the largest leading coefficient.
+// trigonometric polynomial at theta_0 + pi, evaluated by `leading`) is at least min_relative *
+// scale, else the one with the largest leading coefficient.
 template <typename Leading>
-const Offset& ChooseOffset(double scale, Leading&& leading) {
+const Offset& ChooseOffset(double min_relative, double scale, Leading&& leading) {
   const Offset* best_offset = &kOffsets[0];
   double best = -1.0;
   for (const Offset& offset : kOffsets) {
     const double value = std::abs(leading(offset));
-    if (value >= kMinRelativeLeading * scale) return offset;
+    if (value >= min_relative * scale) return offset;
     if (value > best) {
       best = value;
       best_offset = &offset;
@@ -124,12 +131,44 @@ struct PairRoot {
   Eigen::Vector3d depth;    // view-1 depths lambda_n of the 3 points, |c_k| = 1
 };
 
-// det[m_1; m_2; m_3] at 5 equally spaced yaws, m_n(theta) = (R_y(theta) x1_n) x xk_n = cos P_n +
-// sin Q_n + S_n, is a trigonometric polynomial of degree 2 (the degree-6 polynomial in tan(theta/2)
-// has the factor 1 + tan^2, derivations.md section 5.5), D = a0 + a1 cos + b1 sin + a2 cos 2theta +
-// b2 sin 2theta; a 5-point DFT gives its coefficients exactly.
+// det[m_1; m_2; m_3], m_n(theta) = (R_y(theta) x1_n) x xk_n = cos P_n + sin Q_n + S_n, is a
+// trigonometric polynomial of degree 2 (the degree-6 polynomial in tan(theta/2) has the factor
+// 1 + tan^2, derivations.md section 5.5), D = a0 + a1 cos + b1 sin + a2 cos 2theta + b2 sin 2theta,
+// with coefficients in closed form (TrigQuadratic::FromNormals).
 struct TrigQuadratic {
   double a0 = 0.0, a1 = 0.0, b1 = 0.0, a2 = 0.0, b2 = 0.0;
+  // D from P_n, Q_n, S_n (S_n has no y part) by multilinearity, w_n = cos P_n + sin Q_n
+  // (derivations.md section 5.5): det[S] = 0; the terms with two S give sum_n sigma_n w_n.y,
+  // sigma_n = (S_i x S_j).y; det[w] = det[P] cos + det[Q] sin on the unit circle; the terms with
+  // one S give A cos^2 + B cos sin + C sin^2, A = sum_n S_n . (P_i x P_j), B = sum_n S_n . (P_i x
+  // Q_j + Q_i x P_j), C = sum_n S_n . (Q_i x Q_j), over (n, i, j) = (0, 1, 2), (1, 2, 0), (2, 0,
+  // 1).
+  static TrigQuadratic FromNormals(const std::array<Eigen::Vector3d, 3>& P,
+                                   const std::array<Eigen::Vector3d, 3>& Q,
+                                   const std::array<Eigen::Vector3d, 3>& S) {
+    // S . (u x v) for S with S.y = 0.
+    auto s_dot_cross = [](const Eigen::Vector3d& S, const Eigen::Vector3d& u,
+                          const Eigen::Vector3d& v) {
+      return S.x() * (u.y() * v.z() - u.z() * v.y()) + S.z() * (u.x() * v.y() - u.y() * v.x());
+    };
+    double A = 0.0, B = 0.0, C = 0.0, linear_cos = 0.0, linear_sin = 0.0;
+    for (int n = 0; n < 3; ++n) {
+      const int i = n == 2 ? 0 : n + 1, j = n == 0 ? 2 : n - 1;
+      A += s_dot_cross(S[n], P[i], P[j]);
+      B += s_dot_cross(S[n], P[i], Q[j]) + s_dot_cross(S[n], Q[i], P[j]);
+      C += s_dot_cross(S[n], Q[i], Q[j]);
+      const double sigma = S[i].z() * S[j].x() - S[i].x() * S[j].z();
+      linear_cos += sigma * P[n].y();
+      linear_sin += sigma * Q[n].y();
+    }
+    TrigQuadratic D;
+    D.a0 = 0.5 * (A + C);
+    D.a1 = P[0].dot(P[1].cross(P[2])) + linear_cos;
+    D.b1 = Q[0].dot(Q[1].cross(Q[2])) + linear_sin;
+    D.a2 = 0.5 * (A - C);
+    D.b2 = 0.5 * B;
+    return D;
+  }
   // Value at theta_0 + pi, the leading coefficient of the quartic in tan((theta - theta_0)/2).
   double AtOffsetPlusPi(const Offset& o) const {
     return a0 - a1 * o.c - b1 * o.s + a2 * o.c2 + b2 * o.s2;
@@ -145,50 +184,42 @@ struct TrigQuadratic {
   }
 };
 
-// Real roots of the pair (1, k) that pass cheirality. Returns 0 when det[m_1; m_2; m_3] vanishes
-// for every yaw (two of the three triplets coincide, or all three points coincide): the pair then
-// has a continuum of solutions, not a few.
-int SolveUprightPair(const MinimalRays& x1, const MinimalRays& xk, std::array<PairRoot, 4>* roots) {
-  // m_n(theta) = cos P_n + sin Q_n + S_n with P_n = A_n x xk_n, Q_n = B_n x xk_n, S_n = C_n x xk_n
-  // (TrigLinear), written out for the zeros of A, B, C (S_n has no y part); likewise
-  // (R_y(theta) x1_n) . xk_n = cos p_n + sin q_n + s_n.
+// The upright two-view problem of pair (1, k): the epipolar normals m_n(theta) = cos P_n + sin
+// Q_n + S_n and the real roots t of det[m_1; m_2; m_3] in t = tan((theta - theta_0)/2).
+struct UprightPair {
   std::array<Eigen::Vector3d, 3> P, Q, S;
+  // (R_y(theta) x1_n) . xk_n = cos p_n + sin q_n + s_n.
   std::array<double, 3> p, q, s;
+  const Offset* offset = &kOffsets[0];
+  std::array<double, 4> t;
+  int num_t = 0;
+};
+
+// Sets up pair (1, k) and solves its quartic. No roots (num_t = 0) when det[m_1; m_2; m_3]
+// vanishes for every yaw (two of the three triplets coincide, or all three points coincide): the
+// pair then has a continuum of solutions, not a few.
+void SolveUprightQuartic(const MinimalRays& x1, const MinimalRays& xk, UprightPair* pair) {
+  // P_n = A_n x xk_n, Q_n = B_n x xk_n, S_n = C_n x xk_n (TrigLinear), written out for the zeros
+  // of A, B, C (S_n has no y part).
+  std::array<Eigen::Vector3d, 3>& P = pair->P;
+  std::array<Eigen::Vector3d, 3>& Q = pair->Q;
+  std::array<Eigen::Vector3d, 3>& S = pair->S;
   for (std::size_t n = 0; n < kNumTriplets; ++n) {
     const double x = x1[n].x(), y = x1[n].y(), z = x1[n].z();
     const double a = xk[n].x(), b = xk[n].y(), c = xk[n].z();
     P[n] = Eigen::Vector3d(-z * b, z * a - x * c, x * b);
     Q[n] = Eigen::Vector3d(x * b, -x * a - z * c, z * b);
     S[n] = Eigen::Vector3d(y * c, 0.0, -y * a);
-    p[n] = x * a + z * c;
-    q[n] = z * a - x * c;
-    s[n] = y * b;
+    pair->p[n] = x * a + z * c;
+    pair->q[n] = z * a - x * c;
+    pair->s[n] = y * b;
   }
-  // cos and sin of 2 pi j / 5.
-  static constexpr double kC[5] = {1.0, 0.30901699437494742, -0.80901699437494742,
-                                   -0.80901699437494742, 0.30901699437494742};
-  static constexpr double kS[5] = {0.0, 0.95105651629515357, 0.58778525229247313,
-                                   -0.58778525229247313, -0.95105651629515357};
-  TrigQuadratic D;
-  double squared_hadamard_bound = 0.0;  // prod_n |m_n|^2 at theta = 0, >= det^2 there
-  for (int j = 0; j < 5; ++j) {
-    const Eigen::Vector3d m0 = kC[j] * P[0] + kS[j] * Q[0] + S[0];
-    const Eigen::Vector3d m1 = kC[j] * P[1] + kS[j] * Q[1] + S[1];
-    const Eigen::Vector3d m2 = kC[j] * P[2] + kS[j] * Q[2] + S[2];
-    if (j == 0) squared_hadamard_bound = m0.squaredNorm() * m1.squaredNorm() * m2.squaredNorm();
-    const double value = m0.dot(m1.cross(m2));
-    const int j2 = (2 * j) % 5;  // 2 theta_j = theta_{2j mod 5}
-    D.a0 += value;
-    D.a1 += value * kC[j];
-    D.b1 += value * kS[j];
-    D.a2 += value * kC[j2];
-    D.b2 += value * kS[j2];
+  pair->num_t = 0;
+  const TrigQuadratic D = TrigQuadratic::FromNormals(P, Q, S);
+  double squared_hadamard_bound = 1.0;  // prod_n |m_n|^2 at theta = 0, >= det^2 there
+  for (std::size_t n = 0; n < kNumTriplets; ++n) {
+    squared_hadamard_bound *= (P[n] + S[n]).squaredNorm();
   }
-  D.a0 *= 0.2;
-  D.a1 *= 0.4;
-  D.b1 *= 0.4;
-  D.a2 *= 0.4;
-  D.b2 *= 0.4;
   const double scale = D.Scale();
   // The determinant vanishes identically (rounding leaves about 1e-16 of the Hadamard bound) when
   // two triplets coincide.
@@ -196,110 +227,171 @@ int SolveUprightPair(const MinimalRays& x1, const MinimalRays& xk, std::array<Pa
   if (!(scale * scale >
         kMinRelativeDeterminant * kMinRelativeDeterminant * squared_hadamard_bound) ||
       !std::isfinite(scale)) {
-    return 0;
+    return;
   }
+  pair->offset = &ChooseOffset(kMinRelativeQuarticLeading, scale,
+                               [&D](const Offset& theta0) { return D.AtOffsetPlusPi(theta0); });
+  pair->num_t = internal::SolveQuarticReal(D.Quartic(*pair->offset), &pair->t, kQuarticNewtonSteps,
+                                           kMaxImaginaryPart);
+}
 
-  const Offset& offset =
-      ChooseOffset(scale, [&D](const Offset& theta0) { return D.AtOffsetPlusPi(theta0); });
-  std::array<double, 4> t;
-  const int num_t =
-      internal::SolveQuarticReal(D.Quartic(offset), &t, kQuarticNewtonSteps, kMaxImaginaryPart);
-
+// The roots of pair (1, k) that pass cheirality.
+int UprightPairRoots(const MinimalRays& xk,
+                     const UprightPair& pair,
+                     std::array<PairRoot, 4>* roots) {
+  const std::array<Eigen::Vector3d, 3>& P = pair.P;
+  const std::array<Eigen::Vector3d, 3>& Q = pair.Q;
+  const std::array<Eigen::Vector3d, 3>& S = pair.S;
+  const std::array<double, 3>& p = pair.p;
+  const std::array<double, 3>& q = pair.q;
+  const std::array<double, 3>& s = pair.s;
+  const Offset& offset = *pair.offset;
+  const std::array<double, 4>& t = pair.t;
+  const int num_t = pair.num_t;
   int count = 0;
   for (int i = 0; i < num_t; ++i) {
-    PairRoot& root = (*roots)[count];
-    root.yaw = Yaw::FromCayley(t[i], offset);
-    const double c = root.yaw.c, sn = root.yaw.s;
-    // The epipole R_k c_k is orthogonal to the three epipolar normals m_n: take the best
-    // conditioned cross product of two of them.
-    std::array<Eigen::Vector3d, 3> m;
-    for (std::size_t n = 0; n < kNumTriplets; ++n) m[n] = c * P[n] + sn * Q[n] + S[n];
-    Eigen::Vector3d epipole = m[0].cross(m[1]);
-    for (const Eigen::Vector3d& candidate : {m[1].cross(m[2]), m[2].cross(m[0])}) {
-      if (candidate.squaredNorm() > epipole.squaredNorm()) epipole = candidate;
-    }
-    const double norm = epipole.norm();
-    if (!(norm > 0.0) || !std::isfinite(norm)) continue;
-    epipole /= norm;
-    // View-1 depths lambda_n = ((xk x e) . (xk x R x1)) / |xk x R x1|^2, xk x R x1 = -m_n
-    // (derivations.md section 4.6). The sign of c_k is free: all depths must be positive for one
-    // of the two signs, which the numerators decide before any division.
-    std::array<double, 3> numerator;
+    // Everything below is homogeneous in w = 1 + t^2 > 0, so the yaw is carried unnormalised,
+    // (c, sn) = w (cos theta, sin theta) (Yaw::FromCayley times w), and m_n = w m_n(theta).
+    const double t_squared = t[i] * t[i];
+    const double w = 1.0 + t_squared, c_phi = 1.0 - t_squared, s_phi = 2.0 * t[i];
+    const double c = c_phi * offset.c - s_phi * offset.s, sn = s_phi * offset.c + c_phi * offset.s;
+    // m_n by components (S_n.y = 0), in plain scalars: Eigen's 3-vectors cost shuffles here.
+    std::array<double, 3> mx, my, mz;
     for (std::size_t n = 0; n < kNumTriplets; ++n) {
-      numerator[n] = -xk[n].cross(epipole).dot(m[n]);
+      mx[n] = c * P[n].x() + sn * Q[n].x() + w * S[n].x();
+      my[n] = c * P[n].y() + sn * Q[n].y();
+      mz[n] = c * P[n].z() + sn * Q[n].z() + w * S[n].z();
     }
-    const double sign = numerator[0] < 0.0 ? -1.0 : 1.0;
+    // The epipole R_k c_k is orthogonal to the three epipolar normals m_n: take the best
+    // conditioned of the cross products m_n x m_(n+1) (normalised once the root is kept).
+    std::array<double, 3> ex, ey, ez, squared_norm;
+    for (std::size_t n = 0; n < kNumTriplets; ++n) {
+      const std::size_t j = n == 2 ? 0 : n + 1;
+      ex[n] = my[n] * mz[j] - mz[n] * my[j];
+      ey[n] = mz[n] * mx[j] - mx[n] * mz[j];
+      ez[n] = mx[n] * my[j] - my[n] * mx[j];
+      squared_norm[n] = ex[n] * ex[n] + ey[n] * ey[n] + ez[n] * ez[n];
+    }
+    std::size_t best = squared_norm[1] > squared_norm[0] ? 1 : 0;
+    best = squared_norm[2] > squared_norm[best] ? 2 : best;
+    const Eigen::Vector3d epipole(ex[best], ey[best], ez[best]);
+    // View-1 depths lambda_n = ((xk x e) . (xk x R x1)) / |xk x R x1|^2, xk x R x1 = -m_n
+    // (derivations.md section 4.6), and in front of camera k too: (R (lambda x1 - c)) . xk =
+    // lambda (R x1) . xk - e . xk > 0. The sign of c_k is free: both tests hold for one of the two
+    // signs, which the first numerator decides; multiplied by |m_n|^2 > 0, they need no division.
+    std::array<double, 3> numerator, denominator, epipole_dot;
     bool in_front = true;
     for (std::size_t n = 0; n < kNumTriplets; ++n) {
-      const double denominator = m[n].squaredNorm();
-      in_front = in_front && sign * numerator[n] > 0.0 && denominator > 0.0;
-      if (!in_front) break;
-      root.depth[n] = sign * numerator[n] / denominator;
+      const double a = xk[n].x(), b = xk[n].y(), d = xk[n].z();
+      // -(xk x e) . m
+      numerator[n] = -((b * epipole.z() - d * epipole.y()) * mx[n] +
+                       (d * epipole.x() - a * epipole.z()) * my[n] +
+                       (a * epipole.y() - b * epipole.x()) * mz[n]);
+      denominator[n] = mx[n] * mx[n] + my[n] * my[n] + mz[n] * mz[n];
+      epipole_dot[n] = a * epipole.x() + b * epipole.y() + d * epipole.z();
+    }
+    const double sign = numerator[0] < 0.0 ? -1.0 : 1.0;
+    for (std::size_t n = 0; n < kNumTriplets; ++n) {
+      in_front &= (sign * numerator[n] > 0.0) & (denominator[n] > 0.0) &
+                  (sign * (numerator[n] * (c * p[n] + sn * q[n] + w * s[n]) -
+                           denominator[n] * epipole_dot[n]) >
+                   0.0);
     }
     if (!in_front) continue;
-    epipole *= sign;
-    // In front of camera k too: (R (lambda x1 - c)) . xk = lambda (R x1) . xk - e . xk > 0.
+    const double norm = epipole.norm();
+    if (!(norm > 0.0) || !std::isfinite(norm)) continue;
+    PairRoot& root = (*roots)[count];
+    root.yaw = {c / w, sn / w};
+    // lambda_n = w numerator_n / (|e| denominator_n) for the unnormalised m_n and e.
+    const double unit = sign / norm;
+    root.epipole = unit * epipole;
     for (std::size_t n = 0; n < kNumTriplets; ++n) {
-      in_front =
-          in_front && root.depth[n] * (c * p[n] + sn * q[n] + s[n]) - epipole.dot(xk[n]) > 0.0;
+      root.depth[n] = w * unit * numerator[n] / denominator[n];
     }
-    if (!in_front || !root.depth.allFinite()) continue;
-    root.epipole = epipole;
+    if (!root.depth.allFinite()) continue;
     ++count;
   }
   return count;
 }
 
-// A candidate of the decoupled solver between gravity-aligned frames: R_k = R_y(theta_k) and the
-// fourth column t_k of camera k = 2, 3.
-struct YawCandidate {
-  Yaw yaw2, yaw3;
-  Eigen::Vector3d t2, t3;
-};
-
-// The decoupled solver on aligned rays (steps 1-3 of trifocal_3pt.h): writes the candidates best
-// first and returns their count. Every candidate is finite: yaws from finite roots, unit epipoles,
-// finite kappa.
-int SolveDecoupledAligned(const MinimalRays& x1,
-                          const MinimalRays& x2,
-                          const MinimalRays& x3,
-                          std::array<YawCandidate, 16>* solutions) {
-  // Camera 2 sets the scale |c_2| = 1, undefined without parallax in pair (1,2); camera 3 may
-  // have none (c_3 = 0 is a valid pose).
-  if (internal::PairExplainedByYaw(x1, x2)) return 0;
-  std::array<PairRoot, 4> roots2, roots3;
-  const int count2 = SolveUprightPair(x1, x2, &roots2);
-  if (count2 == 0) return 0;
-  const int count3 = SolveUprightPair(x1, x3, &roots3);
-
+// The decoupled solver's result between gravity-aligned frames: the kept roots of both pairs and
+// the candidates, combinations (i2, i3) with the scale kappa of c_3, best first.
+struct DecoupledSolution {
   struct Candidate {
     double residual_squared, kappa;
     int i2, i3;
   };
+  std::array<PairRoot, 4> roots2, roots3;
   std::array<Candidate, 16> candidates;
+  int count2 = 0, count3 = 0, count = 0;
+};
+
+// The decoupled solver on aligned rays (steps 1-3 of trifocal_3pt.h): fills *solution and returns
+// its candidate count. Every candidate is finite: yaws from finite roots, unit epipoles, finite
+// kappa.
+int SolveDecoupledAligned(const MinimalRays& x1,
+                          const MinimalRays& x2,
+                          const MinimalRays& x3,
+                          DecoupledSolution* solution) {
+  solution->count = 0;
+  // Camera 2 sets the scale |c_2| = 1, undefined without parallax in pair (1,2); camera 3 may
+  // have none (c_3 = 0 is a valid pose).
+  if (internal::PairExplainedByYaw(x1, x2)) return 0;
+  // Both quartics first: their long chains of dependent divisions and roots are independent, and
+  // back to back the processor overlaps them.
+  UprightPair pair2, pair3;
+  SolveUprightQuartic(x1, x2, &pair2);
+  SolveUprightQuartic(x1, x3, &pair3);
+  const int count2 = UprightPairRoots(x2, pair2, &solution->roots2);
+  solution->count2 = count2;
+  if (count2 == 0) return 0;
+  const int count3 = UprightPairRoots(x3, pair3, &solution->roots3);
+  solution->count3 = count3;
+
+  std::array<double, 4> inverse_squared_norm2, inverse_squared_norm3;
+  for (int i = 0; i < count2; ++i) {
+    inverse_squared_norm2[i] = 1.0 / solution->roots2[i].depth.squaredNorm();
+  }
+  for (int i = 0; i < count3; ++i) {
+    inverse_squared_norm3[i] = 1.0 / solution->roots3[i].depth.squaredNorm();
+  }
   int count = 0;
   for (int i2 = 0; i2 < count2; ++i2) {
-    const Eigen::Vector3d& depth2 = roots2[i2].depth;
+    const Eigen::Vector3d& depth2 = solution->roots2[i2].depth;
     for (int i3 = 0; i3 < count3; ++i3) {
-      const Eigen::Vector3d& depth3 = roots3[i3].depth;
+      const Eigen::Vector3d& depth3 = solution->roots3[i3].depth;
       // Scale of c_3 that best matches the depths of pair (1,2); the depth-ratio residual
       // |lambda_2 - kappa lambda_3| / |lambda_2| ranks (compared squared).
-      const double kappa = depth2.dot(depth3) / depth3.squaredNorm();
+      const double kappa = depth2.dot(depth3) * inverse_squared_norm3[i3];
       const double residual_squared =
-          (depth2 - kappa * depth3).squaredNorm() / depth2.squaredNorm();
+          (depth2 - kappa * depth3).squaredNorm() * inverse_squared_norm2[i2];
       if (!(kappa > 0.0) || !std::isfinite(kappa) || !std::isfinite(residual_squared)) continue;
-      candidates[count++] = {residual_squared, kappa, i2, i3};
+      solution->candidates[count++] = {residual_squared, kappa, i2, i3};
     }
   }
   SortByKey(
-      count, [](const Candidate& c) { return c.residual_squared; }, &candidates);
-  for (int i = 0; i < count; ++i) {
-    const PairRoot& root2 = roots2[candidates[i].i2];
-    const PairRoot& root3 = roots3[candidates[i].i3];
-    // t = -R c = -epipole (|c_2| = 1, c_3 scaled by kappa).
-    (*solutions)[i] = {root2.yaw, root3.yaw, -root2.epipole, -candidates[i].kappa * root3.epipole};
-  }
+      count, [](const DecoupledSolution::Candidate& c) { return c.residual_squared; },
+      &solution->candidates);
+  solution->count = count;
   return count;
+}
+
+// Writes the candidates of `solution` to *solutions (cleared), best first, in place, and returns
+// their count. write_pose(camera, index, scale, pose) writes the pose of camera k = camera + 1 for
+// its pair root `index`, whose fourth column is t = -scale * epipole (scale 1 for camera 2, |c_2| =
+// 1, and kappa for camera 3).
+template <typename WritePose>
+int WriteCandidates(const DecoupledSolution& solution,
+                    WritePose&& write_pose,
+                    std::vector<ThreeViewPose>* solutions) {
+  solutions->resize(solution.count);
+  for (int i = 0; i < solution.count; ++i) {
+    const DecoupledSolution::Candidate& candidate = solution.candidates[i];
+    ThreeViewPose& pose = (*solutions)[i];
+    write_pose(1, candidate.i2, 1.0, &pose.cam2_from_cam1);
+    write_pose(2, candidate.i3, candidate.kappa, &pose.cam3_from_cam1);
+  }
+  return solution.count;
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -415,7 +507,7 @@ int SolveSexticAligned(const Rays& x1,
   const Offset* offset = &kOffsets[0];
   if (std::abs(sextic[6]) < kMinRelativeLeading * scale) {
     // The leading coefficient is the value of the sextic's trigonometric form at theta_0 + pi.
-    offset = &ChooseOffset(scale, [&](const Offset& theta0) {
+    offset = &ChooseOffset(kMinRelativeLeading, scale, [&](const Offset& theta0) {
       const std::array<double, 7> h = system.Sextic(theta0);
       return h[6] * scale / std::max(max_abs(h), 1e-300);
     });
@@ -479,19 +571,21 @@ int SolveTrifocal3pt(const Rays& x1,
                      const Rays& x3,
                      std::vector<ThreeViewPose>* solutions) {
   internal::CheckTriplets("SolveTrifocal3pt", kNumTriplets, kNumTriplets, x1, x2, x3, solutions);
-  solutions->clear();
-  std::array<YawCandidate, 16> candidates;
-  const int count = SolveDecoupledAligned({x1[0], x1[1], x1[2]}, {x2[0], x2[1], x2[2]},
-                                          {x3[0], x3[1], x3[2]}, &candidates);
-  for (int i = 0; i < count; ++i) {
-    const YawCandidate& candidate = candidates[i];
-    solutions->push_back(
-        {{candidate.yaw2.Matrix(), candidate.t2}, {candidate.yaw3.Matrix(), candidate.t3}});
-  }
-  return count;
+  DecoupledSolution solution;
+  SolveDecoupledAligned({x1[0], x1[1], x1[2]}, {x2[0], x2[1], x2[2]}, {x3[0], x3[1], x3[2]},
+                        &solution);
+  // Each candidate's poses straight from its roots (cheaper than staging them per root).
+  return WriteCandidates(
+      solution,
+      [&solution](int camera, int index, double scale, CameraPose* pose) {
+        const PairRoot& root = camera == 1 ? solution.roots2[index] : solution.roots3[index];
+        pose->R = root.yaw.Matrix();
+        pose->t = -scale * root.epipole;
+      },
+      solutions);
 }
 
-// Aligns the rays into fixed storage and maps each candidate back in closed form from its yaws
+// Aligns the rays into fixed storage and maps each root back in closed form from its yaw
 // (GravityFrames, derivations.md section 2.2): no heap allocation, no 3x3 products per candidate.
 int SolveTrifocal3pt(const Rays& x1,
                      const Rays& x2,
@@ -503,22 +597,34 @@ int SolveTrifocal3pt(const Rays& x1,
   const internal::GravityFrames frames("SolveTrifocal3pt", gravity_in_cam1, gravity_in_cam2,
                                        gravity_in_cam3);
   internal::CheckTriplets("SolveTrifocal3pt", kNumTriplets, kNumTriplets, x1, x2, x3, solutions);
-  solutions->clear();
   std::array<MinimalRays, 3> aligned;
   for (std::size_t n = 0; n < kNumTriplets; ++n) {
     aligned[0][n] = frames.alignment(0) * x1[n];
     aligned[1][n] = frames.alignment(1) * x2[n];
     aligned[2][n] = frames.alignment(2) * x3[n];
   }
-  std::array<YawCandidate, 16> candidates;
-  const int count = SolveDecoupledAligned(aligned[0], aligned[1], aligned[2], &candidates);
-  for (int i = 0; i < count; ++i) {
-    const YawCandidate& candidate = candidates[i];
-    solutions->push_back(
-        {frames.UnalignYawPose(1, candidate.yaw2.c, candidate.yaw2.s, candidate.t2),
-         frames.UnalignYawPose(2, candidate.yaw3.c, candidate.yaw3.s, candidate.t3)});
+  DecoupledSolution solution;
+  SolveDecoupledAligned(aligned[0], aligned[1], aligned[2], &solution);
+  // Each root mapped back once (candidates share roots; t is linear in the scale), in plain Eigen
+  // storage left uninitialised.
+  std::array<std::array<Eigen::Matrix3d, 4>, 2> R;
+  std::array<std::array<Eigen::Vector3d, 4>, 2> t;
+  for (int camera = 1; camera <= 2; ++camera) {
+    const int count = camera == 1 ? solution.count2 : solution.count3;
+    for (int i = 0; i < count; ++i) {
+      const PairRoot& root = camera == 1 ? solution.roots2[i] : solution.roots3[i];
+      const CameraPose pose = frames.UnalignYawPose(camera, root.yaw.c, root.yaw.s, -root.epipole);
+      R[camera - 1][i] = pose.R;
+      t[camera - 1][i] = pose.t;
+    }
   }
-  return count;
+  return WriteCandidates(
+      solution,
+      [&R, &t](int camera, int index, double scale, CameraPose* pose) {
+        pose->R = R[camera - 1][index];
+        pose->t = scale * t[camera - 1][index];
+      },
+      solutions);
 }
 
 int SolveTrifocal3ptSextic(const Rays& x1,

@@ -43,10 +43,10 @@ namespace trigrav {
 //      m_n = (R_k x1_n) x xk_n give det[m_1; m_2; m_3] = 0: a trigonometric polynomial of degree 2
 //      in theta_k, i.e. a quartic in tan(theta_k/2) (the degree-6 determinant divided by its exact
 //      factor 1 + tan^2, derivations.md section 5.5). Its real roots come in closed form (Ferrari)
-//      with Newton polish; under noise a complex pair with |Im tan| <= 0.1 also contributes its
-//      real part (noise turns near-double real roots into such pairs). R_k c_k spans the null space
-//      of the m_n; roots whose 3 points are not all in front of cameras 1 and k (for either sign of
-//      c_k) are dropped.
+//      with Newton polish; under noise a complex pair with |Im tan| <= 0.1 (1 + Re(tan)^2) also
+//      contributes its real part (noise turns near-double real roots into such pairs). R_k c_k
+//      spans the null space of the m_n; roots whose 3 points are not all in front of cameras 1 and
+//      k (for either sign of c_k) are dropped.
 //   2. Every pair of surviving roots (theta_2, c_2, lambda_2) x (theta_3, c_3, lambda_3), lambda_k
 //      the view-1 depths of the 3 points from pair (1,k) with |c_k| = 1, gives the candidate
 //      (theta_2, c_2, theta_3, kappa c_3) with kappa = <lambda_2, lambda_3> / <lambda_3, lambda_3>.

@@ -7,10 +7,11 @@
 // On scenes like initialize_and_refine_synthetic's default (IssueScenes: 1 px noise, 20 % outliers,
 // threshold 2 px, f = 500 px, 20 scenes from seed 2026, n = 375 and 875 triplets):
 //  - BM_RobustEstimateIssueScenes/3pt/<n>: the 3-point robust estimate;
-//  - BM_InitializeAndRefine/<raw|ceres|dedicated>/<n>: InitializeAndRefine (3pt RANSAC, yaw-only
-//    refinement with one re-classification round): RANSAC only ("raw"), refined by the Ceres
-//    engine and by the dedicated one; counters are per-call medians of the stages (ms,
-//    ThreeViewEstimateTimings) and of the inliers and refinement runs.
+//  - BM_InitializeAndRefine/<raw|engine>/<n>: InitializeAndRefine (3pt RANSAC, yaw-only
+//    refinement with one re-classification round): RANSAC only ("raw"), or refined by each engine
+//    (EngineName: ceres, dedicated, ceres_points_eliminated); counters are per-call medians of the
+//    stages (ms, ThreeViewEstimateTimings), of the inliers, of the refinement runs and of the
+//    last run's iterations.
 // Built with PoseLib, BM_PoseLib/... times its two-pair estimate_relative_pose and its refinement
 // on the same scenes (poselib_benchmarks.h).
 //
@@ -131,7 +132,7 @@ void BM_InitializeAndRefine(benchmark::State& state, Refinement refinement) {
   state.counters["refinement_ms"] = trigrav::Median(refine);
   state.counters["inliers"] = trigrav::Median(inliers);
   state.counters["runs"] = trigrav::Median(runs);
-  state.counters["last_run_iterations"] = trigrav::Median(iterations);
+  if (refinement) state.counters["last_run_iterations"] = trigrav::Median(iterations);
 }
 
 }  // namespace

@@ -111,57 +111,64 @@ std::string CaseName(RotationModel model, bool bearings, CameraModel camera, Los
          (bearings ? "bearings" : CameraModelName(camera)) + " " + losses[static_cast<int>(loss)];
 }
 
-// Every rotation model, every camera model (and bearings), every loss, two random problems each:
-// the final costs agree to 1e-8 relative, the poses to 1e-6, and the engines take about as many
-// steps.
-TEST(DedicatedEngineTest, ReachesTheCeresOptimumOnRandomProblems) {
-  std::mt19937_64 rng(17);
-  int cases = 0;
+// Calls test(model, bearings, camera, loss) for every rotation model, camera model (and bearings,
+// with the camera unused) and loss.
+template <typename Test>
+void ForEveryProblemKind(const Test& test) {
   for (const RotationModel model : {RotationModel::kYawOnly, RotationModel::kGravityPrior}) {
     for (int observation = 0; observation <= static_cast<int>(kCameraModels.size());
          ++observation) {
       const bool bearings = observation == static_cast<int>(kCameraModels.size());
       const CameraModel camera = bearings ? CameraModel::kPinhole : kCameraModels[observation];
       for (const LossType loss : {LossType::kNone, LossType::kHuber, LossType::kCauchy}) {
-        for (int trial = 0; trial < 2; ++trial) {
-          SCOPED_TRACE(CaseName(model, bearings, camera, loss) + " trial " + std::to_string(trial));
-          SyntheticScene scene;
-          const ThreeViewObservations observations =
-              SceneObservations(camera, bearings, &rng, &scene);
-          const ThreeViewPose initial = Perturbed(scene.ground_truth, &rng);
-          Options options;
-          options.engine = Engine::kCeres;
-          options.rotation_model = model;
-          options.loss = loss;
-          options.gravity_sigma_deg = 0.2;
-          // Without a robust loss, the inliers only (with the outliers the problem takes more than
-          // 50 iterations to crawl to its optimum).
-          const ThreeViewBundleAdjustmentConfig config =
-              loss == LossType::kNone
-                  ? ThreeViewBundleAdjustmentConfig::FromInlierMask(scene.is_inlier)
-                  : ThreeViewBundleAdjustmentConfig();
-          const Solved ceres = BuildAndSolve(observations, initial, options, config);
-          options.engine = Engine::kDedicated;
-          const Solved dedicated = BuildAndSolve(observations, initial, options, config);
-          ASSERT_TRUE(ceres.summary.success) << ceres.summary.message;
-          ASSERT_TRUE(dedicated.summary.success) << dedicated.summary.message;
-          EXPECT_NEAR(dedicated.summary.InitialCost(), ceres.summary.InitialCost(),
-                      1e-12 * ceres.summary.InitialCost());
-          EXPECT_NEAR(dedicated.summary.FinalCost(), ceres.summary.FinalCost(),
-                      1e-8 * ceres.summary.FinalCost());
-          EXPECT_LT(dedicated.summary.FinalCost(), 0.5 * dedicated.summary.InitialCost());
-          EXPECT_LT(PoseDistance(dedicated.pose, ceres.pose), 1e-6);
-          EXPECT_NEAR(dedicated.summary.Iterations(), ceres.summary.Iterations(), 2);
-          EXPECT_EQ(dedicated.summary.ceres_summary.termination_type,
-                    ceres.summary.ceres_summary.termination_type)
-              << dedicated.summary.BriefReport() << "\n"
-              << ceres.summary.BriefReport();
-          EXPECT_EQ(dedicated.summary.num_residual_blocks, ceres.summary.num_residual_blocks);
-          ++cases;
-        }
+        test(model, bearings, camera, loss);
       }
     }
   }
+}
+
+// Every rotation model, every camera model (and bearings), every loss, two random problems each:
+// the final costs agree to 1e-8 relative, the poses to 1e-6, and the engines take about as many
+// steps.
+TEST(DedicatedEngineTest, ReachesTheCeresOptimumOnRandomProblems) {
+  std::mt19937_64 rng(17);
+  int cases = 0;
+  ForEveryProblemKind([&](RotationModel model, bool bearings, CameraModel camera, LossType loss) {
+    for (int trial = 0; trial < 2; ++trial) {
+      SCOPED_TRACE(CaseName(model, bearings, camera, loss) + " trial " + std::to_string(trial));
+      SyntheticScene scene;
+      const ThreeViewObservations observations = SceneObservations(camera, bearings, &rng, &scene);
+      const ThreeViewPose initial = Perturbed(scene.ground_truth, &rng);
+      Options options;
+      options.engine = Engine::kCeres;
+      options.rotation_model = model;
+      options.loss = loss;
+      options.gravity_sigma_deg = 0.2;
+      // Without a robust loss, the inliers only (with the outliers the problem takes more than
+      // 50 iterations to crawl to its optimum).
+      const ThreeViewBundleAdjustmentConfig config =
+          loss == LossType::kNone ? ThreeViewBundleAdjustmentConfig::FromInlierMask(scene.is_inlier)
+                                  : ThreeViewBundleAdjustmentConfig();
+      const Solved ceres = BuildAndSolve(observations, initial, options, config);
+      options.engine = Engine::kDedicated;
+      const Solved dedicated = BuildAndSolve(observations, initial, options, config);
+      ASSERT_TRUE(ceres.summary.success) << ceres.summary.message;
+      ASSERT_TRUE(dedicated.summary.success) << dedicated.summary.message;
+      EXPECT_NEAR(dedicated.summary.InitialCost(), ceres.summary.InitialCost(),
+                  1e-12 * ceres.summary.InitialCost());
+      EXPECT_NEAR(dedicated.summary.FinalCost(), ceres.summary.FinalCost(),
+                  1e-8 * ceres.summary.FinalCost());
+      EXPECT_LT(dedicated.summary.FinalCost(), 0.5 * dedicated.summary.InitialCost());
+      EXPECT_LT(PoseDistance(dedicated.pose, ceres.pose), 1e-6);
+      EXPECT_NEAR(dedicated.summary.Iterations(), ceres.summary.Iterations(), 2);
+      EXPECT_EQ(dedicated.summary.ceres_summary.termination_type,
+                ceres.summary.ceres_summary.termination_type)
+          << dedicated.summary.BriefReport() << "\n"
+          << ceres.summary.BriefReport();
+      EXPECT_EQ(dedicated.summary.num_residual_blocks, ceres.summary.num_residual_blocks);
+      ++cases;
+    }
+  });
   EXPECT_EQ(cases, 2 * 7 * 3 * 2);
 }
 
@@ -171,56 +178,48 @@ TEST(DedicatedEngineTest, ReachesTheCeresOptimumOnRandomProblems) {
 TEST(DedicatedEngineTest, PointsEliminatedEngineReachesTheCeresOptimum) {
   std::mt19937_64 rng(29);
   int cases = 0;
-  for (const RotationModel model : {RotationModel::kYawOnly, RotationModel::kGravityPrior}) {
-    for (int observation = 0; observation <= static_cast<int>(kCameraModels.size());
-         ++observation) {
-      const bool bearings = observation == static_cast<int>(kCameraModels.size());
-      const CameraModel camera = bearings ? CameraModel::kPinhole : kCameraModels[observation];
-      for (const LossType loss : {LossType::kNone, LossType::kHuber, LossType::kCauchy}) {
-        SCOPED_TRACE(CaseName(model, bearings, camera, loss));
-        SyntheticScene scene;
-        const ThreeViewObservations observations =
-            SceneObservations(camera, bearings, &rng, &scene);
-        const ThreeViewPose initial = Perturbed(scene.ground_truth, &rng);
-        Options options;
-        options.engine = Engine::kCeres;
-        options.rotation_model = model;
-        options.loss = loss;
-        options.gravity_sigma_deg = 0.2;
-        options.function_tolerance = 1e-12;
-        options.max_num_iterations = 500;  // the joint problem crawls with Cauchy's loss
-        // The inliers: an outlier's robust cost (Cauchy's most) can have several minima over its
-        // point, and the two formulations, which move the points differently, may settle in
-        // different ones.
-        const ThreeViewBundleAdjustmentConfig config =
-            ThreeViewBundleAdjustmentConfig::FromInlierMask(scene.is_inlier);
-        const Solved ceres = BuildAndSolve(observations, initial, options, config);
-        options.engine = Engine::kCeresPointsEliminated;
-        const Solved eliminated = BuildAndSolve(observations, initial, options, config);
-        ASSERT_TRUE(ceres.summary.success) << ceres.summary.message;
-        ASSERT_TRUE(eliminated.summary.success) << eliminated.summary.message;
-        EXPECT_EQ(eliminated.summary.num_residual_blocks, ceres.summary.num_residual_blocks);
-        ++cases;
-        if (loss == LossType::kCauchy) {
-          // Cauchy's cost is not convex where the imposed tilt leaves residuals of several
-          // pixels: the two formulations can stop in different minima. Never in a worse one here.
-          EXPECT_LE(eliminated.summary.FinalCost(), ceres.summary.FinalCost() * (1.0 + 1e-8))
-              << eliminated.summary.BriefReport() << "\n"
-              << ceres.summary.BriefReport();
-          if (eliminated.summary.FinalCost() < ceres.summary.FinalCost() * (1.0 - 1e-8)) continue;
-        }
-        EXPECT_NEAR(eliminated.summary.FinalCost(), ceres.summary.FinalCost(),
-                    1e-8 * ceres.summary.FinalCost())
-            << eliminated.summary.BriefReport() << "\n"
-            << ceres.summary.BriefReport();
-        EXPECT_LT(PoseDistance(eliminated.pose, ceres.pose), 1e-6);
-        ASSERT_EQ(eliminated.points.size(), ceres.points.size());
-        for (std::size_t p = 0; p < ceres.points.size(); ++p) {
-          EXPECT_LT((eliminated.points[p] - ceres.points[p]).norm(), 1e-6 * ceres.points[p].norm());
-        }
-      }
+  ForEveryProblemKind([&](RotationModel model, bool bearings, CameraModel camera, LossType loss) {
+    SCOPED_TRACE(CaseName(model, bearings, camera, loss));
+    SyntheticScene scene;
+    const ThreeViewObservations observations = SceneObservations(camera, bearings, &rng, &scene);
+    const ThreeViewPose initial = Perturbed(scene.ground_truth, &rng);
+    Options options;
+    options.engine = Engine::kCeres;
+    options.rotation_model = model;
+    options.loss = loss;
+    options.gravity_sigma_deg = 0.2;
+    options.function_tolerance = 1e-12;
+    options.max_num_iterations = 500;  // the joint problem crawls with Cauchy's loss
+    // The inliers: an outlier's robust cost (Cauchy's most) can have several minima over its
+    // point, and the two formulations, which move the points differently, may settle in
+    // different ones.
+    const ThreeViewBundleAdjustmentConfig config =
+        ThreeViewBundleAdjustmentConfig::FromInlierMask(scene.is_inlier);
+    const Solved ceres = BuildAndSolve(observations, initial, options, config);
+    options.engine = Engine::kCeresPointsEliminated;
+    const Solved eliminated = BuildAndSolve(observations, initial, options, config);
+    ASSERT_TRUE(ceres.summary.success) << ceres.summary.message;
+    ASSERT_TRUE(eliminated.summary.success) << eliminated.summary.message;
+    EXPECT_EQ(eliminated.summary.num_residual_blocks, ceres.summary.num_residual_blocks);
+    ++cases;
+    if (loss == LossType::kCauchy) {
+      // Cauchy's cost is not convex where the imposed tilt leaves residuals of several
+      // pixels: the two formulations can stop in different minima. Never in a worse one here.
+      EXPECT_LE(eliminated.summary.FinalCost(), ceres.summary.FinalCost() * (1.0 + 1e-8))
+          << eliminated.summary.BriefReport() << "\n"
+          << ceres.summary.BriefReport();
+      if (eliminated.summary.FinalCost() < ceres.summary.FinalCost() * (1.0 - 1e-8)) return;
     }
-  }
+    EXPECT_NEAR(eliminated.summary.FinalCost(), ceres.summary.FinalCost(),
+                1e-8 * ceres.summary.FinalCost())
+        << eliminated.summary.BriefReport() << "\n"
+        << ceres.summary.BriefReport();
+    EXPECT_LT(PoseDistance(eliminated.pose, ceres.pose), 1e-6);
+    ASSERT_EQ(eliminated.points.size(), ceres.points.size());
+    for (std::size_t p = 0; p < ceres.points.size(); ++p) {
+      EXPECT_LT((eliminated.points[p] - ceres.points[p]).norm(), 1e-6 * ceres.points[p].norm());
+    }
+  });
   EXPECT_EQ(cases, 2 * 7 * 3);
 }
 

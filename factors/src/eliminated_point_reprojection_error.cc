@@ -1,7 +1,6 @@
 // EliminatedPointReprojectionError (derivations.md section 15).
 #include "trigrav/factors/eliminated_point_reprojection_error.h"
 
-#include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>

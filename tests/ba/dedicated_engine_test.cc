@@ -111,6 +111,17 @@ std::string CaseName(RotationModel model, bool bearings, CameraModel camera, Los
          (bearings ? "bearings" : CameraModelName(camera)) + " " + losses[static_cast<int>(loss)];
 }
 
+// The kCeres engine's options of the random problems (gravity sigma 0.2 deg, the scenes' IMU
+// noise).
+Options CeresOptions(RotationModel model, LossType loss) {
+  Options options;
+  options.engine = Engine::kCeres;
+  options.rotation_model = model;
+  options.loss = loss;
+  options.gravity_sigma_deg = 0.2;
+  return options;
+}
+
 // Calls test(model, bearings, camera, loss) for every rotation model, camera model (and bearings,
 // with the camera unused) and loss.
 template <typename Test>
@@ -139,11 +150,7 @@ TEST(DedicatedEngineTest, ReachesTheCeresOptimumOnRandomProblems) {
       SyntheticScene scene;
       const ThreeViewObservations observations = SceneObservations(camera, bearings, &rng, &scene);
       const ThreeViewPose initial = Perturbed(scene.ground_truth, &rng);
-      Options options;
-      options.engine = Engine::kCeres;
-      options.rotation_model = model;
-      options.loss = loss;
-      options.gravity_sigma_deg = 0.2;
+      Options options = CeresOptions(model, loss);
       // Without a robust loss, the inliers only (with the outliers the problem takes more than
       // 50 iterations to crawl to its optimum).
       const ThreeViewBundleAdjustmentConfig config =
@@ -183,11 +190,7 @@ TEST(DedicatedEngineTest, PointsEliminatedEngineReachesTheCeresOptimum) {
     SyntheticScene scene;
     const ThreeViewObservations observations = SceneObservations(camera, bearings, &rng, &scene);
     const ThreeViewPose initial = Perturbed(scene.ground_truth, &rng);
-    Options options;
-    options.engine = Engine::kCeres;
-    options.rotation_model = model;
-    options.loss = loss;
-    options.gravity_sigma_deg = 0.2;
+    Options options = CeresOptions(model, loss);
     options.function_tolerance = 1e-12;
     options.max_num_iterations = 500;  // the joint problem crawls with Cauchy's loss
     // The inliers: an outlier's robust cost (Cauchy's most) can have several minima over its

@@ -82,9 +82,9 @@ struct ThreeViewBundleAdjustmentOptions {
   // three_view_covariance.h, derivations.md section 12), scaled by ObservationSigma()^2 (and
   // gravity_sigma_deg^2 through the prior's weight). Cost per refinement (one thread, median;
   // examples/experiments/covariance_calibration): 0.9 ms at 300 points, 1.9 ms at 650 (yaw-only;
-  // 1.1 and 2.4 ms gravity-prior), 8-9 % of the refinement; ceres::Covariance (SPARSE_QR) on the
-  // same problem takes 2.5-2.7 and 5.3-6.3 ms. InitializeAndRefine computes it in every refinement
-  // run.
+  // 1.1 and 2.4 ms gravity-prior), 8-9 % of a kCeres refinement; ceres::Covariance (SPARSE_QR) on
+  // the same problem takes 2.5-2.7 and 5.3-6.3 ms. kCeresPointsEliminated builds problem() for it
+  // first. InitializeAndRefine computes it in every refinement run.
   bool compute_covariance = false;
   int max_num_iterations = 50;
   int num_threads = 1;

@@ -22,6 +22,7 @@
 #include "trigrav/factors/observation_jacobian.h"
 #include "trigrav/factors/reprojection_factors.h"
 #include "trigrav/initializers/gravity.h"
+#include "trigrav/initializers/skew.h"
 
 namespace trigrav {
 namespace internal {
@@ -115,12 +116,6 @@ class ViewObservations<BearingResidual> {
  private:
   std::vector<BearingResidual> residuals_;
 };
-
-Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
 
 // The engine for one residual type and one rotation model (kRot = 1: yaw, 3: quaternion tangent).
 // Pose unknowns in its internal order [rotation 2, C2 (2, sphere), rotation 3, C3 (3)], so that

@@ -7,6 +7,7 @@
 
 #include "trigrav/factors/observation_jacobian.h"
 #include "trigrav/initializers/gravity.h"
+#include "trigrav/initializers/skew.h"
 
 namespace trigrav {
 namespace {
@@ -19,12 +20,6 @@ constexpr double kAbsoluteDecrement = 1e-24;
 constexpr int kMaxPointIterations = 20;
 // Step halvings tried when a Gauss-Newton step raises the cost.
 constexpr int kMaxHalvings = 10;
-
-Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
 
 // The rotation Ceres' UnitQuaternionRotatePoint applies, x -> x + 2w (v x x) + 2 v x (v x x),
 // as a matrix (q = [w, v]).

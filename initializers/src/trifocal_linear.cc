@@ -12,6 +12,7 @@
 #include "null_space.h"
 #include "triangular_factor.h"
 #include "trifocal_common.h"
+#include "trigrav/initializers/skew.h"
 #include "two_view_geometry.h"
 
 namespace trigrav {
@@ -103,12 +104,6 @@ TensorSlices DenormaliseTensor(const Vector27d& t,
     T[i] = H2_inverse * sum * H3_inverse_transpose;
   }
   return T;
-}
-
-Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d S;
-  S << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return S;
 }
 
 // Essential matrices E_21, E_31 from the tensor (header step 3): epipoles from the null vectors of

@@ -1,7 +1,6 @@
-# Installs trigrav into a scratch prefix, then configures, builds and runs the consumer against it.
-#   -DTRIGRAV_BINARY_DIR=<build>   install that build as it is, or
-#   -DTRIGRAV_SOURCE_DIR=<source> -DSHARED=ON   first build the libraries alone from the source
-#                                               (BUILD_SHARED_LIBS=ON, -O0, no tests or tools)
+# Installs a trigrav build into a scratch prefix, then configures, builds and runs the consumer
+# against it:
+#   -DTRIGRAV_BINARY_DIR=<build>   the build to install (static or shared libraries, as built)
 #   -DPYTHON=<interpreter> -DPYTHON_INSTALL_DIR=<relative folder>   also import the installed
 #                                               Python module with that interpreter
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -11,19 +10,6 @@ function(run)
     message(FATAL_ERROR "failed (${result}): ${ARGV}")
   endif()
 endfunction()
-if(TRIGRAV_SOURCE_DIR)
-  set(python_args -DTRIGRAV_BUILD_PYTHON=OFF)
-  if(PYTHON)
-    set(python_args -DTRIGRAV_BUILD_PYTHON=ON -DPython_EXECUTABLE=${PYTHON})
-  endif()
-  set(TRIGRAV_BINARY_DIR ${WORK_DIR}/trigrav)
-  # Unoptimised (-O0, no debug information): this variant tests packaging and linking, and the
-  # AutoDiff code compiles several times faster than at -O2.
-  run(${CMAKE_COMMAND} -S ${TRIGRAV_SOURCE_DIR} -B ${TRIGRAV_BINARY_DIR} -DCMAKE_BUILD_TYPE=Debug
-      -DCMAKE_CXX_FLAGS_DEBUG=-O0 -DBUILD_SHARED_LIBS=${SHARED} -DTRIGRAV_BUILD_TESTS=OFF -DTRIGRAV_BUILD_EXAMPLES=OFF
-      -DTRIGRAV_BUILD_BENCHMARKS=OFF ${python_args})
-  run(${CMAKE_COMMAND} --build ${TRIGRAV_BINARY_DIR} -j2)
-endif()
 run(${CMAKE_COMMAND} --install ${TRIGRAV_BINARY_DIR} --prefix ${WORK_DIR}/prefix)
 run(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build
     -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release

@@ -180,6 +180,7 @@ bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial,
   problem_.reset();
   points_.clear();
   used_triplets_.clear();
+  triangulated_.clear();
   if (!initial.IsFinite()) {
     message_ = "initial pose is not finite";
     return false;
@@ -230,19 +231,22 @@ bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial,
   points_.reserve(config_.triplets.size());
   for (const int i : config_.triplets) {
     Eigen::Vector3d x;
-    if (known[i] < 0 || !in_front(i, x = known_points[known[i]] / scale)) {
+    const bool known_in_front = known[i] >= 0 && in_front(i, x = known_points[known[i]] / scale);
+    if (!known_in_front) {
       std::array<Eigen::Vector3d, 3> directions;
       for (int k = 0; k < 3; ++k) directions[k] = rotation[k].transpose() * error_.rays()[k][i];
       if (!TriangulateMidpoint(center, directions, &x) || !in_front(i, x)) continue;
     }
     points_.push_back(x);
     used_triplets_.push_back(i);
+    triangulated_.push_back(known_in_front ? 0 : 1);
   }
   if (points_.size() < 3) {
     message_ = "fewer than 3 triplets can be triangulated in front of the cameras (" +
                std::to_string(points_.size()) + ")";
     points_.clear();
     used_triplets_.clear();
+    triangulated_.clear();
     return false;
   }
   built_ = true;

@@ -62,7 +62,10 @@ struct ThreeViewBundleAdjustmentOptions {
   //  - kDedicated: trigrav's own Levenberg-Marquardt on problem()'s cost (derivations.md section
   //    13): each point's 3 x 3 block eliminated, a fixed-size 7 x 7 (11 x 11) reduced system, no
   //    ceres::Problem built, no allocation per iteration; the fastest
-  //    (examples/benchmarks/README.md). Uses neither linear_solver_type nor num_threads, and
+  //    (examples/benchmarks/README.md). When Build() was given known points it departs from
+  //    Ceres' rules (section 13.6): it first moves the triangulated points to their optimum for
+  //    the starting cameras, and at the function tolerance keeps the last candidate if it would
+  //    be accepted. Uses neither linear_solver_type nor num_threads, and
   //    ignores factors added to problem().
   enum class Engine { kCeres, kDedicated, kCeresPointsEliminated };
 
@@ -195,6 +198,8 @@ class ThreeViewBundleAdjuster {
   // Points of the problem's triplets (reference frame), in the order of triplet_indices().
   const std::vector<Eigen::Vector3d>& points() const { return points_; }
   const std::vector<int>& triplet_indices() const { return used_triplets_; }
+  // Per point (order of points()): 1 if Build() triangulated it, 0 if it started from a known one.
+  const std::vector<char>& triangulated() const { return triangulated_; }
   // Per point (order of points()): the residual norms of its observations in views 1, 2, 3 at the
   // current pose and points (pixels, degrees for bearings; observation_residual.h), +inf for an
   // observation that cannot see its point.
@@ -227,6 +232,7 @@ class ThreeViewBundleAdjuster {
   double center_[2][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
   std::vector<Eigen::Vector3d> points_;
   std::vector<int> used_triplets_;
+  std::vector<char> triangulated_;
 };
 
 }  // namespace trigrav

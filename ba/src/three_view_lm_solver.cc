@@ -445,12 +445,11 @@ bool Engine<Residual, kRot>::WarmStart() const {
          std::find(triangulated.begin(), triangulated.end(), 0) != triangulated.end();
 }
 
-// On a warm start, the points Build() triangulated take Gauss-Newton steps of their own with the
-// cameras fixed, each kept only if it lowers the point's cost (section 13.6). Returns the decrease
-// of the cost.
+// The warm start's first part (section 13.6): the points Build() triangulated take Gauss-Newton
+// steps of their own with the cameras fixed, each kept only if it lowers the point's cost. Returns
+// the decrease of the cost.
 template <typename Residual, int kRot>
 double Engine<Residual, kRot>::PolishTriangulatedPoints() {
-  if (!WarmStart()) return 0.0;
   const std::vector<char>& triangulated = adjuster_->triangulated();
   Eigen::Matrix3d rotation[3];
   Eigen::Vector3d center[3];
@@ -628,7 +627,7 @@ void Engine<Residual, kRot>::Solve(ceres::Solver::Summary* summary) {
   };
 
   const bool warm_start = WarmStart();
-  const double polish_decrease = PolishTriangulatedPoints();
+  const double polish_decrease = warm_start ? PolishTriangulatedPoints() : 0.0;
   // Ceres' trust-region loop (section 13.5). Iteration 0 (TrustRegionMinimizer::IterationZero):
   // evaluate, fix the Jacobi scaling 1 / (1 + |column|) of every unknown.
   if (!Evaluate(x_, points_, &current_)) {

@@ -20,6 +20,7 @@
 #include "robust_loss.h"
 #include "trigrav/factors/angle_manifold.h"
 #include "trigrav/factors/observation_jacobian.h"
+#include "trigrav/factors/point_gauss_newton.h"
 #include "trigrav/factors/reprojection_factors.h"
 #include "trigrav/initializers/gravity.h"
 #include "trigrav/initializers/skew.h"
@@ -30,10 +31,6 @@ namespace {
 
 using Options = ThreeViewBundleAdjustmentOptions;
 constexpr double kDegToRad = M_PI / 180.0;
-// The warm start's point steps (section 13.6): at most this many per point, until the decrement is
-// below this fraction of the point's cost.
-constexpr int kMaxPolishIterations = 10;
-constexpr double kPolishRelativeDecrement = 1e-12;
 
 // The options' loss (robust_loss.h: Ceres' own HuberLoss / CauchyLoss). Huber and Cauchy have
 // rho'' <= 0, where Ceres' corrector (internal/ceres/corrector.cc) scales the residual and its
@@ -54,6 +51,9 @@ class Loss {
     *cost += 0.5 * rho[0];
     return std::sqrt(rho[1]);
   }
+
+  // The loss function, nullptr for the squared loss.
+  const ceres::LossFunction* function() const { return loss_.get(); }
 
  private:
   std::unique_ptr<ceres::LossFunction> loss_;
@@ -233,13 +233,6 @@ class Engine {
                PoseMatrix* hcc,
                PoseVector* gc) const;
   bool ComputeStep(double radius, PoseVector* pose_step, double* model_cost_change);
-  bool PointSystem(std::size_t p,
-                   const Eigen::Matrix3d* rotation,
-                   const Eigen::Vector3d* center,
-                   const Eigen::Vector3d& point,
-                   double* cost,
-                   Eigen::Matrix3d* h,
-                   Eigen::Vector3d* g) const;
   bool WarmStart() const;
   double PolishTriangulatedPoints();
   void Plus(const Pose& x, const PoseVector& delta, Pose* out) const;
@@ -412,31 +405,6 @@ bool Engine<Residual, kRot>::Evaluate(const Pose& pose,
   return std::isfinite(cost) && std::isfinite(fixed_cost);
 }
 
-// Point p's own cost 1/2 sum_k rho(|r_k|^2), Gauss-Newton matrix h and gradient g at `point`, with
-// the cameras fixed and the residuals whitened as in Evaluate (section 13.2).
-template <typename Residual, int kRot>
-bool Engine<Residual, kRot>::PointSystem(std::size_t p,
-                                         const Eigen::Matrix3d* rotation,
-                                         const Eigen::Vector3d* center,
-                                         const Eigen::Vector3d& point,
-                                         double* cost,
-                                         Eigen::Matrix3d* h,
-                                         Eigen::Vector3d* g) const {
-  *cost = 0.0;
-  h->setZero();
-  g->setZero();
-  Eigen::Vector2d r;
-  Eigen::Matrix<double, 2, 3> jr;
-  for (int k = 0; k < 3; ++k) {
-    if (!views_[k].Evaluate(p, rotation[k] * (point - center[k]), &r, &jr)) return false;
-    const double weight = loss_.Apply(r.squaredNorm(), cost);
-    const Eigen::Matrix<double, 2, 3> jx = weight * jr * rotation[k];
-    h->noalias() += jx.transpose() * jx;
-    g->noalias() += jx.transpose() * (weight * r);
-  }
-  return std::isfinite(*cost);
-}
-
 // A warm start (section 13.6): Build() was given points it kept, and the points move.
 template <typename Residual, int kRot>
 bool Engine<Residual, kRot>::WarmStart() const {
@@ -445,8 +413,8 @@ bool Engine<Residual, kRot>::WarmStart() const {
          std::find(triangulated.begin(), triangulated.end(), 0) != triangulated.end();
 }
 
-// The warm start's first part (section 13.6): the points Build() triangulated take Gauss-Newton
-// steps of their own with the cameras fixed, each kept only if it lowers the point's cost. Returns
+// The warm start's first part (section 13.6): each point Build() triangulated is minimised over
+// with the cameras fixed (MinimizeTripletCost, section 15.1), which never raises its cost. Returns
 // the decrease of the cost.
 template <typename Residual, int kRot>
 double Engine<Residual, kRot>::PolishTriangulatedPoints() {
@@ -460,29 +428,18 @@ double Engine<Residual, kRot>::PolishTriangulatedPoints() {
     center[j + 1] = Eigen::Map<const Eigen::Vector3d>(x_.center[j]);
   }
   double decrease = 0.0;
+  TripletLinearization lin;
   for (std::size_t p = 0; p < points_.size(); ++p) {
     if (!triangulated[p]) continue;
-    double cost, trial_cost;
-    Eigen::Matrix3d h, trial_h;
-    Eigen::Vector3d g, trial_g;
-    if (!PointSystem(p, rotation, center, points_[p], &cost, &h, &g)) continue;
-    const double start_cost = cost;
-    for (int iteration = 0; iteration < kMaxPolishIterations; ++iteration) {
-      const Eigen::Vector3d step = -h.ldlt().solve(g);
-      // The decrement g^T h^-1 g, twice the predicted decrease: stop as section 15.1 does.
-      const double decrement = -g.dot(step);
-      if (!(decrement > kPolishRelativeDecrement * cost)) break;
-      const Eigen::Vector3d trial = points_[p] + step;
-      if (!PointSystem(p, rotation, center, trial, &trial_cost, &trial_h, &trial_g) ||
-          !(trial_cost < cost)) {
-        break;
-      }
-      points_[p] = trial;
-      cost = trial_cost;
-      h = trial_h;
-      g = trial_g;
-    }
-    decrease += start_cost - cost;
+    const auto observe = [this, p](int k, const Eigen::Vector3d& x_cam, Eigen::Vector2d* r,
+                                   Eigen::Matrix<double, 2, 3>* d_r_d_x) {
+      return views_[k].Evaluate(p, x_cam, r, d_r_d_x);
+    };
+    if (!LinearizeTriplet(observe, loss_.function(), rotation, center, points_[p], &lin)) continue;
+    const double start_cost = lin.cost;
+    // On a failure the point keeps its last step, which did not raise its cost.
+    MinimizeTripletCost(observe, loss_.function(), rotation, center, &points_[p], &lin);
+    decrease += start_cost - lin.cost;
   }
   return decrease;
 }

@@ -6,20 +6,12 @@
 #include <cmath>
 
 #include "trigrav/factors/observation_jacobian.h"
+#include "trigrav/factors/point_gauss_newton.h"
 #include "trigrav/initializers/gravity.h"
 #include "trigrav/initializers/skew.h"
 
 namespace trigrav {
 namespace {
-
-// Gauss-Newton on the point stops when its decrement g^T H^-1 g (twice the predicted decrease of
-// the triplet's cost) is below kRelativeDecrement of the cost or kAbsoluteDecrement: the cost is
-// then minimised to far below the solver's function tolerance.
-constexpr double kRelativeDecrement = 1e-12;
-constexpr double kAbsoluteDecrement = 1e-24;
-constexpr int kMaxPointIterations = 20;
-// Step halvings tried when a Gauss-Newton step raises the cost.
-constexpr int kMaxHalvings = 10;
 
 // The rotation Ceres' UnitQuaternionRotatePoint applies, x -> x + 2w (v x x) + 2 v x (v x x),
 // as a matrix (q = [w, v]).
@@ -38,87 +30,6 @@ Eigen::Matrix<double, 3, 4> UnitQuaternionRotateJacobian(const double* q,
   jacobian.col(0) = 2.0 * u;
   jacobian.rightCols<3>() = -2.0 * q[0] * Skew(d) - 2.0 * Skew(u) - 2.0 * Skew(v) * Skew(d);
   return jacobian;
-}
-
-}  // namespace
-
-namespace internal {
-
-// The triplet at one point: per view the residual, d r / d x_cam, x_cam and rho(s) (rho, rho',
-// rho''); the cost 1/2 sum rho; H = sum rho' J_X^T J_X and g = sum rho' J_X^T r, the point's
-// Gauss-Newton system with the losses as weights (reweighted least squares).
-struct TripletLinearization {
-  Eigen::Vector2d r[3];
-  Eigen::Matrix<double, 2, 3> jr[3];
-  Eigen::Vector3d x_cam[3];
-  double rho[3][3];
-  double cost = 0.0;
-  Eigen::Matrix3d h;
-  Eigen::Vector3d g;
-};
-
-}  // namespace internal
-
-namespace {
-
-using internal::TripletLinearization;
-
-template <typename Residual>
-bool Linearize(const std::array<Residual, 3>& observations,
-               const ceres::LossFunction* loss,
-               const Eigen::Matrix3d* rotation,
-               const Eigen::Vector3d* center,
-               const Eigen::Vector3d& point,
-               TripletLinearization* out) {
-  out->cost = 0.0;
-  out->h.setZero();
-  out->g.setZero();
-  for (int k = 0; k < 3; ++k) {
-    out->x_cam[k] = rotation[k] * (point - center[k]);
-    if (!LinearizeObservation(observations[k], out->x_cam[k], &out->r[k], &out->jr[k])) {
-      return false;
-    }
-    const double s = out->r[k].squaredNorm();
-    double* rho = out->rho[k];
-    if (loss == nullptr) {
-      rho[0] = s;
-      rho[1] = 1.0;
-      rho[2] = 0.0;
-    } else {
-      loss->Evaluate(s, rho);
-    }
-    out->cost += 0.5 * rho[0];
-    const Eigen::Matrix<double, 2, 3> jx = out->jr[k] * rotation[k];
-    out->h.noalias() += rho[1] * jx.transpose() * jx;
-    out->g.noalias() += rho[1] * jx.transpose() * out->r[k];
-  }
-  return std::isfinite(out->cost) && out->h.allFinite() && out->g.allFinite();
-}
-
-// (m + mu I)^-1 of a symmetric positive semi-definite 3 x 3 matrix by cofactors, with
-// mu = kPointDamping trace(m): a point whose depth the observations hardly constrain (no parallax)
-// has a nearly singular system, along a direction in which its cost hardly changes; the damping
-// keeps the step and the projection of section 15.3 finite there and leaves the others as they
-// are. False if the damped matrix is not positive definite (Sylvester's criterion) or the inverse
-// not finite.
-constexpr double kPointDamping = 1e-10;
-
-bool InvertDamped(const Eigen::Matrix3d& undamped, Eigen::Matrix3d* inverse) {
-  const Eigen::Matrix3d m =
-      undamped + kPointDamping * undamped.trace() * Eigen::Matrix3d::Identity();
-  const double c00 = m(1, 1) * m(2, 2) - m(1, 2) * m(1, 2);
-  const double c01 = m(0, 2) * m(1, 2) - m(0, 1) * m(2, 2);
-  const double c02 = m(0, 1) * m(1, 2) - m(0, 2) * m(1, 1);
-  const double det = m(0, 0) * c00 + m(0, 1) * c01 + m(0, 2) * c02;
-  if (!(m(0, 0) > 0.0) || !(m(0, 0) * m(1, 1) - m(0, 1) * m(0, 1) > 0.0) || !(det > 0.0)) {
-    return false;
-  }
-  const double c11 = m(0, 0) * m(2, 2) - m(0, 2) * m(0, 2);
-  const double c12 = m(0, 1) * m(0, 2) - m(0, 0) * m(1, 2);
-  const double c22 = m(0, 0) * m(1, 1) - m(0, 1) * m(0, 1);
-  *inverse << c00, c01, c02, c01, c11, c12, c02, c12, c22;
-  *inverse /= det;
-  return inverse->allFinite();
 }
 
 }  // namespace
@@ -177,29 +88,16 @@ bool EliminatedPointReprojectionError<Residual>::Evaluate(double const* const* p
     center[j + 1] = Eigen::Map<const Eigen::Vector3d>(parameters[2 * j + 1]);
   }
 
-  // The point: Gauss-Newton from the stored one, each step halved until the cost does not rise.
+  // The point: minimised from the stored one (section 15.1).
   Eigen::Vector3d point = Eigen::Map<const Eigen::Vector3d>(point_);
-  TripletLinearization lin, trial;
-  if (!Linearize(observations_, loss_, rotation, center, point, &lin)) return false;
-  for (int iteration = 0; iteration < kMaxPointIterations; ++iteration) {
-    Eigen::Matrix3d h_inverse;
-    if (!InvertDamped(lin.h, &h_inverse)) return false;
-    const Eigen::Vector3d step = -h_inverse * lin.g;
-    const double decrement = -lin.g.dot(step);
-    if (!std::isfinite(decrement)) return false;
-    if (decrement <= kRelativeDecrement * lin.cost || decrement <= kAbsoluteDecrement) break;
-    bool moved = false;
-    double length = 1.0;
-    for (int halving = 0; halving <= kMaxHalvings && !moved; ++halving, length *= 0.5) {
-      const Eigen::Vector3d candidate = point + length * step;
-      if (Linearize(observations_, loss_, rotation, center, candidate, &trial) &&
-          trial.cost <= lin.cost) {
-        point = candidate;
-        lin = trial;
-        moved = true;
-      }
-    }
-    if (!moved) break;  // at the minimum to round-off
+  const auto observe = [this](int k, const Eigen::Vector3d& x_cam, Eigen::Vector2d* r,
+                              Eigen::Matrix<double, 2, 3>* d_r_d_x) {
+    return LinearizeObservation(observations_[k], x_cam, r, d_r_d_x);
+  };
+  TripletLinearization lin;
+  if (!LinearizeTriplet(observe, loss_, rotation, center, point, &lin) ||
+      !MinimizeTripletCost(observe, loss_, rotation, center, &point, &lin)) {
+    return false;
   }
 
   // Ceres asks for Jacobians at its accepted iterates only: keep the point of those. A rejected
@@ -213,14 +111,13 @@ bool EliminatedPointReprojectionError<Residual>::Evaluate(double const* const* p
 
 template <typename Residual>
 template <int kRotationSize>
-bool EliminatedPointReprojectionError<Residual>::WriteResiduals(
-    const internal::TripletLinearization& lin,
-    const Eigen::Matrix3d* rotation,
-    const Eigen::Vector3d* center,
-    const Eigen::Vector3d& point,
-    double const* const* parameters,
-    double* residuals,
-    double** jacobians) const {
+bool EliminatedPointReprojectionError<Residual>::WriteResiduals(const TripletLinearization& lin,
+                                                                const Eigen::Matrix3d* rotation,
+                                                                const Eigen::Vector3d* center,
+                                                                const Eigen::Vector3d& point,
+                                                                double const* const* parameters,
+                                                                double* residuals,
+                                                                double** jacobians) const {
   // Residuals sqrt(rho / s) r and their derivative (w I + 2 w' r r^T) J with w = sqrt(rho / s),
   // w' = dw/ds = (rho' s - rho) / (2 w s^2), or rho'' / (4 w) near s = 0 (section 15.2).
   constexpr int kCameraSize = kRotationSize + 3;
@@ -253,7 +150,7 @@ bool EliminatedPointReprojectionError<Residual>::WriteResiduals(
   if (jacobians == nullptr) return true;
   // The point follows the cameras: project J_cameras off the columns of J_X.
   Eigen::Matrix3d normal_inverse;
-  if (!InvertDamped(jx.transpose() * jx, &normal_inverse)) return false;
+  if (!InvertDampedPointMatrix(jx.transpose() * jx, &normal_inverse)) return false;
   const Eigen::Matrix<double, 6, 2 * kCameraSize> reduced =
       jc - jx * (normal_inverse * (jx.transpose() * jc));
   if (!reduced.allFinite()) return false;

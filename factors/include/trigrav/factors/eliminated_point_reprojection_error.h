@@ -35,9 +35,7 @@
 #include "trigrav/initializers/observation_residual.h"
 
 namespace trigrav {
-namespace internal {
-struct TripletLinearization;
-}  // namespace internal
+struct TripletLinearization;  // point_gauss_newton.h
 
 // Residual: PixelResidual or BearingResidual (observation_residual.h); both are instantiated.
 template <typename Residual>
@@ -69,7 +67,7 @@ class EliminatedPointReprojectionError final : public ceres::CostFunction {
   // The residuals and Jacobian blocks at the point of `lin` (kRotationSize 1: yaws, 4:
   // quaternions).
   template <int kRotationSize>
-  bool WriteResiduals(const internal::TripletLinearization& lin,
+  bool WriteResiduals(const TripletLinearization& lin,
                       const Eigen::Matrix3d* rotation,
                       const Eigen::Vector3d* center,
                       const Eigen::Vector3d& point,

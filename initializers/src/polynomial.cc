@@ -1,10 +1,7 @@
 // The real-root finders of the polynomial toolkit (polynomial.h).
 #include "polynomial.h"
 
-#include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <complex>
 #include <limits>
 
 namespace trigrav {
@@ -317,31 +314,6 @@ int SolveQuarticReal(const std::array<double, 5>& c,
   return count;
 }
 
-int SolveSexticReal(const std::array<double, 7>& c,
-                    std::array<double, 6>* roots,
-                    double max_relative_imag,
-                    int newton_steps) {
-  // Companion matrix of the monic polynomial: ones on the subdiagonal, -c[i]/c[6] in the last
-  // column.
-  Eigen::Matrix<double, 6, 6> companion = Eigen::Matrix<double, 6, 6>::Zero();
-  for (int i = 0; i < 5; ++i) companion(i + 1, i) = 1.0;
-  for (int i = 0; i < 6; ++i) companion(i, 5) = -c[i] / c[6];
-  if (!companion.allFinite()) return 0;
-  const Eigen::EigenSolver<Eigen::Matrix<double, 6, 6>> solver(companion, false);
-  if (solver.info() != Eigen::Success) return 0;
-  int count = 0;
-  for (int i = 0; i < 6; ++i) {
-    const std::complex<double> eigenvalue = solver.eigenvalues()[i];
-    if (std::abs(eigenvalue.imag()) > max_relative_imag * (1.0 + std::abs(eigenvalue.real()))) {
-      continue;
-    }
-    double t = eigenvalue.real();
-    PolishRootNewton(c, newton_steps, &t);
-    (*roots)[count++] = t;
-  }
-  return count;
-}
-
 int SolveDegreeTenReal(const Polynomial<10>& c, std::array<double, 10>* roots) {
   double largest = 0.0;
   for (const double value : c) largest = std::max(largest, std::abs(value));
@@ -366,6 +338,15 @@ int SolveDegreeTenReal(const Polynomial<10>& c, std::array<double, 10>* roots) {
   int count = SturmRoots(balanced, n, roots, &consistent);
   if (!consistent) count = DerivativeRoots(balanced, n, roots);
   for (int i = 0; i < count; ++i) (*roots)[i] *= s;
+  return count;
+}
+
+int SolveSexticReal(const std::array<double, 7>& c, std::array<double, 6>* roots) {
+  Polynomial<10> padded{};
+  std::copy(c.begin(), c.end(), padded.begin());
+  std::array<double, 10> all;
+  const int count = SolveDegreeTenReal(padded, &all);
+  std::copy(all.begin(), all.begin() + count, roots->begin());
   return count;
 }
 

@@ -413,7 +413,7 @@ double LargestSingularValue(const Eigen::Matrix<double, 6, 6>& R) {
   Vector6d x = Vector6d::Ones().normalized();
   double sigma_squared = 0.0;
   for (int iteration = 0; iteration < 8; ++iteration) {
-    const Vector6d next = R.transpose() * (R.triangularView<Eigen::Upper>() * x);
+    const Vector6d next = R.transpose().lazyProduct(R.lazyProduct(x));
     sigma_squared = next.norm();
     if (!(sigma_squared > 0.0)) return 0.0;
     x = next / sigma_squared;
@@ -546,7 +546,7 @@ int SolveSexticAligned(const Rays& x1,
     const Vector6d centers = internal::SmallestRightSingularVectorOfTriangular<6>(R_F);
     const double sigma_max = LargestSingularValue(R_F);
     if (!(sigma_max > 0.0)) continue;
-    const double score = (R_F.triangularView<Eigen::Upper>() * centers).norm() / sigma_max;
+    const double score = R_F.lazyProduct(centers).norm() / sigma_max;
 
     Candidate& candidate = candidates[count];
     if (!internal::OrientScaleAndMakePose(x1, x2, x3, yaw2.Angle(), centers.head<3>(), yaw3.Angle(),

@@ -84,7 +84,7 @@ int SolveTrifocal3pt(const std::vector<Eigen::Vector3d>& x1,
 // both are linear in (cos theta_3, sin theta_3, 1), so (cos theta_3, sin theta_3, 1) ~ row_12 x
 // row_13 =: (cx, cy, cz), and cx^2 + cy^2 - cz^2 = 0 is a degree-8 polynomial in tan(theta_2/2)
 // with the exact factor 1 + tan^2(theta_2/2): a sextic (derivations.md section 5.4). Its real roots
-// come from a 6x6 companion matrix with Newton polish. The centres are the null vector of the 12x6
+// come from Sturm sequences. The centres are the null vector of the 12x6
 // translation system of the 3 triplets with the yaws fixed (derivations.md section 3.4), signed by
 // cheirality. Candidates are sorted by sigma_min / sigma_max of that 12x6 system (sigma_max by
 // power iteration), which involves all 9 trifocal constraints. At most 6 solutions (the paper's "6

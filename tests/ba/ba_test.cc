@@ -158,7 +158,7 @@ TEST(InitializeAndRefineTest, GravityPriorBeatsYawOnlyWithImuNoise) {
 // KITTI-like driving with 0.1 deg of IMU noise, 1.5 px threshold: the gravity-prior model corrects
 // the tilt already in RANSAC (the automatic max_tilt_correction_deg), so the refinement starts from
 // the true motion and wins the IMU's error back; from upright RANSAC models it often cannot.
-TEST(InitializeAndRefineTest, GravityPriorWinsBackImuTiltOnDrivingTriplets) {
+TEST(InitializeAndRefineStatisticalTest, GravityPriorWinsBackImuTiltOnDrivingTriplets) {
   InitializeAndRefineOptions options;
   options.robust.ransac.max_error = 1.5;
   options.robust.ransac.min_iterations = 100;

@@ -72,7 +72,7 @@ MedianErrors RunScenes(const SyntheticSceneOptions& scene_options,
 // the pose is as accurate as with a pinhole camera, and as close to its oracle (the bundle
 // adjustment started at the true pose on the true inliers). The same pixels read through a pinhole
 // camera give a far worse pose, or a failure.
-TEST(CameraModels, OpenCvDistortionRecoversThePoseAsAccuratelyAsPinhole) {
+TEST(CameraModelsStatisticalTest, OpenCvDistortionRecoversThePoseAsAccuratelyAsPinhole) {
   constexpr int kScenes = 60;
   const MedianErrors pinhole = RunScenes(NoisyScene({0.0, 0.0, 0.0, 0.0}), kScenes, ToObservations);
   const SyntheticSceneOptions distorted_options = NoisyScene({-0.3, 0.0, 0.0, 0.0});

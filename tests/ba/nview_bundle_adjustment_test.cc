@@ -256,7 +256,7 @@ TEST(NViewBundleAdjustmentTest, NoOpAtTheOptimum) {
 // prediction (a variance from 40 draws has a relative sd of 0.22 per dof; empirical / predicted
 // traces over seeds 22-24: yaw-only centre 1.02-1.23, yaw 0.95-1.35; gravity prior centre
 // 0.98-1.13, omega 0.66-0.91). A factor of 2 in omega's tangent map would give 4 or 0.25.
-TEST(NViewBundleAdjustmentTest, CovarianceMatchesTheEmpiricalSpread) {
+TEST(NViewBundleAdjustmentStatisticalTest, CovarianceMatchesTheEmpiricalSpread) {
   for (const RotationModel model : {RotationModel::kYawOnly, RotationModel::kGravityPrior}) {
     NViewSceneOptions scene_options;
     scene_options.num_images = 10;

@@ -17,23 +17,26 @@ namespace internal {
 
 // Solves R x = b (upper) and R^T x = b in place for a fixed-size upper-triangular R, by plain row
 // loops: Eigen's triangular solver goes through dynamic-size blocks and matrix-vector kernels,
-// several times slower at the solvers' sizes.
+// several times slower at the solvers' sizes. The reciprocals of the diagonal come first, out of
+// the chain of dependent rows, which then multiplies instead of dividing.
 template <int N>
 void SolveUpperInPlace(const Eigen::Matrix<double, N, N>& R, Eigen::Matrix<double, N, 1>* x) {
+  const Eigen::Matrix<double, N, 1> inverse_diagonal = R.diagonal().cwiseInverse();
   for (int i = N - 1; i >= 0; --i) {
     double sum = (*x)[i];
     for (int j = i + 1; j < N; ++j) sum -= R(i, j) * (*x)[j];
-    (*x)[i] = sum / R(i, i);
+    (*x)[i] = sum * inverse_diagonal[i];
   }
 }
 
 template <int N>
 void SolveUpperTransposedInPlace(const Eigen::Matrix<double, N, N>& R,
                                  Eigen::Matrix<double, N, 1>* x) {
+  const Eigen::Matrix<double, N, 1> inverse_diagonal = R.diagonal().cwiseInverse();
   for (int i = 0; i < N; ++i) {
     double sum = (*x)[i];
     for (int j = 0; j < i; ++j) sum -= R(j, i) * (*x)[j];
-    (*x)[i] = sum / R(i, i);
+    (*x)[i] = sum * inverse_diagonal[i];
   }
 }
 

@@ -72,6 +72,16 @@ EliminatedPointReprojectionError<Residual>::CreateWithQuaternions(const Observat
 }
 
 template <typename Residual>
+std::array<double, 14> EliminatedPointReprojectionError<Residual>::ParameterValues(
+    double const* const* parameters) const {
+  std::array<double, 14> values{};
+  const int rotation_size = yaw_only_ ? 1 : 4;
+  double* out = values.data();
+  for (int b = 0; b < 4; ++b) out = std::copy_n(parameters[b], b % 2 == 0 ? rotation_size : 3, out);
+  return values;
+}
+
+template <typename Residual>
 bool EliminatedPointReprojectionError<Residual>::Evaluate(double const* const* parameters,
                                                           double* residuals,
                                                           double** jacobians) const {
@@ -88,13 +98,18 @@ bool EliminatedPointReprojectionError<Residual>::Evaluate(double const* const* p
     center[j + 1] = Eigen::Map<const Eigen::Vector3d>(parameters[2 * j + 1]);
   }
 
-  // The point: minimised from the stored one (section 15.1).
-  Eigen::Vector3d point = Eigen::Map<const Eigen::Vector3d>(point_);
+  // The point: minimised from the stored one, or, for Jacobians at the cameras of the last
+  // evaluation without them (Ceres' accepted trial step), from that evaluation's point (section
+  // 15.1).
+  const std::array<double, 14> values = ParameterValues(parameters);
+  const bool at_trial = jacobians != nullptr && trial_valid_ && values == trial_parameters_;
+  Eigen::Vector3d point = at_trial ? trial_point_ : Eigen::Map<const Eigen::Vector3d>(point_);
   const auto observe = [this](int k, const Eigen::Vector3d& x_cam, Eigen::Vector2d* r,
                               Eigen::Matrix<double, 2, 3>* d_r_d_x) {
     return LinearizeObservation(observations_[k], x_cam, r, d_r_d_x);
   };
   TripletLinearization lin;
+  trial_valid_ = false;
   if (!LinearizeTriplet(observe, loss_, rotation, center, point, &lin) ||
       !MinimizeTripletCost(observe, loss_, rotation, center, &point, &lin)) {
     return false;
@@ -102,8 +117,15 @@ bool EliminatedPointReprojectionError<Residual>::Evaluate(double const* const* p
 
   // Ceres asks for Jacobians at its accepted iterates only: keep the point of those. A rejected
   // step's point may lie in another basin of an outlier's robust cost, and starting from it would
-  // make the cost at the iterate depend on the steps tried (section 15.1).
-  if (jacobians != nullptr) std::copy_n(point.data(), 3, point_);
+  // make the cost at the iterate depend on the steps tried (section 15.1). A trial's point is kept
+  // aside, for the Jacobians should Ceres accept the trial.
+  if (jacobians != nullptr) {
+    std::copy_n(point.data(), 3, point_);
+  } else {
+    trial_parameters_ = values;
+    trial_point_ = point;
+    trial_valid_ = true;
+  }
   return yaw_only_
              ? WriteResiduals<1>(lin, rotation, center, point, parameters, residuals, jacobians)
              : WriteResiduals<4>(lin, rotation, center, point, parameters, residuals, jacobians);

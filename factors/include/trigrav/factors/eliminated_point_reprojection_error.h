@@ -22,9 +22,11 @@
 // minimisation from *point (3 numbers, camera 1's frame), and an evaluation that computes Jacobians
 // stores its result there. Ceres computes Jacobians at its accepted iterates only, so the trial
 // steps it rejects leave the point alone, and after ceres::Solve *point is the point of the
-// solution. Evaluate returns false when the point cannot be found: an observation that cannot see
-// it, or a singular system (no parallax). Evaluations of one factor must not run concurrently
-// (Ceres evaluates each residual block once at a time).
+// solution. An evaluation with Jacobians at exactly the parameters of the evaluation without them
+// just before (Ceres' accepted trial step) starts from that evaluation's point instead, already at
+// the minimum for those cameras. Evaluate returns false when the point cannot be found: an
+// observation that cannot see it, or a singular system (no parallax). Evaluations of one factor
+// must not run concurrently (Ceres evaluates each residual block once at a time).
 
 #include <ceres/cost_function.h>
 #include <ceres/loss_function.h>
@@ -75,11 +77,18 @@ class EliminatedPointReprojectionError final : public ceres::CostFunction {
                       double* residuals,
                       double** jacobians) const;
 
+  // The values of the parameter blocks in order (yaw-only: the first 8, then zeros).
+  std::array<double, 14> ParameterValues(double const* const* parameters) const;
+
   Observations observations_;
   bool yaw_only_;
   std::array<Eigen::Matrix3d, 3> alignments_;  // yaw-only: A_1, A_2, A_3
   const ceres::LossFunction* loss_;
   double* point_;
+  // The last evaluation without Jacobians, if it succeeded: its parameter values and point.
+  mutable bool trial_valid_ = false;
+  mutable std::array<double, 14> trial_parameters_;
+  mutable Eigen::Vector3d trial_point_;
 };
 
 }  // namespace trigrav

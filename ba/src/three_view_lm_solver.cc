@@ -256,6 +256,19 @@ class Engine {
                PoseMatrix* hcc,
                PoseVector* gc) const;
   bool ComputeStep(double radius, PoseVector* pose_step, double* model_cost_change);
+  // *reduced -= w hpc on and below the diagonal, all the Cholesky factorisation reads. Column by
+  // column (lazy products): the whole 11 x 3 by 3 x 11 product went through Eigen's general matrix
+  // product (packing and a blocked kernel), 1.6x the time of the gravity-prior step; each column's
+  // length fixed at compile time: with run-time lengths, the loops' bounds and alignment checks.
+  template <int... kColumns>
+  static void SubtractLowerProduct(const Eigen::Matrix<double, kSize, 3>& w,
+                                   const PointPoseMatrix& hpc,
+                                   PoseMatrix* reduced,
+                                   std::integer_sequence<int, kColumns...>) {
+    ((reduced->col(kColumns).template tail<kSize - kColumns>().noalias() -=
+      w.template bottomRows<kSize - kColumns>() * hpc.col(kColumns)),
+     ...);
+  }
   bool WarmStart() const;
   double PolishTriangulatedPoints();
   void Plus(const Pose& x, const PoseVector& delta, Pose* out) const;
@@ -419,16 +432,17 @@ template <typename Residual, int kRot>
 void Engine<Residual, kRot>::Linearize(Linearization* lin) const {
   PoseMatrix hcc = PoseMatrix::Zero();
   PoseVector gc = PoseVector::Zero();
-  PointBlocks blocks;
   for (std::size_t p = 0; p < lin->observations.size(); ++p) {
     const std::array<WhitenedObservation, 3>& observations = lin->observations[p];
+    // Summed in place: a local copy was read back by pairs across the coupling's misaligned
+    // columns (3 x 3 + 3 x m doubles), stalling on store forwarding.
+    PointBlocks& blocks = lin->points[p];
     blocks.hpp.noalias() = observations[0].jr.transpose() * observations[0].jr;
     blocks.gp.noalias() = observations[0].jr.transpose() * observations[0].r;
     const WhitenedObservation& o2 = observations[1];
     AddView<0>(o2.jr, o2.r, lin->rotation[0], o2.x_cam, lin->sphere, &blocks, &hcc, &gc);
     const WhitenedObservation& o3 = observations[2];
     AddView<1>(o3.jr, o3.r, lin->rotation[1], o3.x_cam, lin->sphere, &blocks, &hcc, &gc);
-    lin->points[p] = blocks;
   }
   if constexpr (kRot == 3) {
     for (int j = 0; j < 2; ++j) {
@@ -505,12 +519,7 @@ bool Engine<Residual, kRot>::ComputeStep(double radius,
     for (std::size_t p = 0; p < lin.points.size(); ++p) {
       const PointBlocks& blocks = lin.points[p];
       const Eigen::Matrix<double, kSize, 3> w = blocks.hpc.transpose() * point_inverse_[p];
-      // Symmetric: the lower triangle only, all the Cholesky factorisation reads. Column by column
-      // (lazy products): the whole 11 x 3 by 3 x 11 product went through Eigen's general
-      // matrix product (packing and a blocked kernel), 1.6x the time of the gravity-prior step.
-      for (int c = 0; c < kSize; ++c) {
-        reduced.col(c).tail(kSize - c).noalias() -= w.bottomRows(kSize - c) * blocks.hpc.col(c);
-      }
+      SubtractLowerProduct(w, blocks.hpc, &reduced, std::make_integer_sequence<int, kSize>());
       rhs.noalias() += w * blocks.gp;
     }
   }

@@ -183,7 +183,10 @@ class Engine {
       prior_weight_ = ratio * ratio;
     }
     const std::size_t n = triplets.size();
-    for (Linearization* l : {&current_, &candidate_}) l->points.resize(n);
+    for (Linearization* l : {&current_, &candidate_}) {
+      l->observations.resize(n);
+      l->points.resize(n);
+    }
     point_scale_squared_.resize(n);
     point_inverse_.resize(n);
     point_step_.resize(n);
@@ -211,8 +214,20 @@ class Engine {
     PointPoseMatrix hpc;  // J_p^T J_c
     Eigen::Vector3d gp;   // J_p^T r
   };
-  // Residuals and normal equations at one parameter vector (section 13.3).
+  // One observation's whitened residual sqrt(rho') r, its Jacobian sqrt(rho') J_r and x_cam.
+  struct WhitenedObservation {
+    Eigen::Matrix<double, 2, 3> jr;
+    Eigen::Vector2d r;
+    Eigen::Vector3d x_cam;
+  };
+  // Residuals and normal equations at one parameter vector (section 13.3): EvaluateResiduals
+  // fills the cost and the whitened observations, Linearize the normal equations from them.
   struct Linearization {
+    std::vector<std::array<WhitenedObservation, 3>> observations;
+    Eigen::Matrix<double, 2, 3> prior_jacobian[2];  // sqrt(w) J of the gravity priors (kRot = 3)
+    Eigen::Vector2d prior_residual[2];              // sqrt(w) r
+    Eigen::Matrix3d rotation[2];
+    Eigen::Matrix<double, 3, 2> sphere;  // C2's Plus Jacobian P
     std::vector<PointBlocks> points;
     PoseMatrix hcc;
     PoseVector gc;
@@ -220,9 +235,17 @@ class Engine {
     double fixed_cost = 0.0;  // view 1's, when the points are constant (Ceres' fixed_cost)
   };
 
+  bool EvaluateResiduals(const Pose& pose,
+                         const std::vector<Eigen::Vector3d>& points,
+                         Linearization* out) const;
+  void Linearize(Linearization* lin) const;
   bool Evaluate(const Pose& pose,
                 const std::vector<Eigen::Vector3d>& points,
-                Linearization* out) const;
+                Linearization* out) const {
+    if (!EvaluateResiduals(pose, points, out)) return false;
+    Linearize(out);
+    return true;
+  }
   template <int kView>
   void AddView(const Eigen::Matrix<double, 2, 3>& jr,
                const Eigen::Vector2d& r,
@@ -233,6 +256,19 @@ class Engine {
                PoseMatrix* hcc,
                PoseVector* gc) const;
   bool ComputeStep(double radius, PoseVector* pose_step, double* model_cost_change);
+  // *reduced -= w hpc on and below the diagonal, all the Cholesky factorisation reads. Column by
+  // column (lazy products): the whole 11 x 3 by 3 x 11 product went through Eigen's general matrix
+  // product (packing and a blocked kernel), 1.6x the time of the gravity-prior step; each column's
+  // length fixed at compile time: with run-time lengths, the loops' bounds and alignment checks.
+  template <int... kColumns>
+  static void SubtractLowerProduct(const Eigen::Matrix<double, kSize, 3>& w,
+                                   const PointPoseMatrix& hpc,
+                                   PoseMatrix* reduced,
+                                   std::integer_sequence<int, kColumns...>) {
+    ((reduced->col(kColumns).template tail<kSize - kColumns>().noalias() -=
+      w.template bottomRows<kSize - kColumns>() * hpc.col(kColumns)),
+     ...);
+  }
   bool WarmStart() const;
   double PolishTriangulatedPoints();
   void Plus(const Pose& x, const PoseVector& delta, Pose* out) const;
@@ -331,50 +367,39 @@ void Engine<Residual, kRot>::AddView(const Eigen::Matrix<double, 2, 3>& jr,
   }
 }
 
+// The cost and the whitened observations; false if a residual cannot be evaluated or the cost is
+// not finite.
 template <typename Residual, int kRot>
-bool Engine<Residual, kRot>::Evaluate(const Pose& pose,
-                                      const std::vector<Eigen::Vector3d>& points,
-                                      Linearization* out) const {
+bool Engine<Residual, kRot>::EvaluateResiduals(const Pose& pose,
+                                               const std::vector<Eigen::Vector3d>& points,
+                                               Linearization* out) const {
   Eigen::Matrix3d rotation[2];
   Eigen::Vector3d center[2];
   for (int j = 0; j < 2; ++j) {
     rotation[j] = Rotation(pose, j);
     center[j] = Eigen::Map<const Eigen::Vector3d>(pose.center[j]);
+    out->rotation[j] = rotation[j];
   }
   Eigen::Matrix<double, 3, 2, Eigen::RowMajor> sphere_jacobian;
   sphere_manifold_.PlusJacobian(pose.center[0], sphere_jacobian.data());
-  const Eigen::Matrix<double, 3, 2> sphere = sphere_jacobian;
+  out->sphere = sphere_jacobian;
   // Sums in locals, stored once: the loss is a virtual call, and stores through *out kept the
   // compiler from holding them in registers or on the stack.
   double cost = 0.0;
   double fixed_cost = 0.0;
-  PoseMatrix hcc = PoseMatrix::Zero();
-  PoseVector gc = PoseVector::Zero();
-  Eigen::Vector2d r;
-  Eigen::Matrix<double, 2, 3> jr;
-  PointBlocks blocks;
   for (std::size_t p = 0; p < points.size(); ++p) {
     const Eigen::Vector3d& point = points[p];
-    // View 1: the reference camera sees the point in its own frame.
-    if (!views_[0].Evaluate(p, point, &r, &jr)) return false;
-    double weight = loss_.Apply(r.squaredNorm(), constant_points_ ? &fixed_cost : &cost);
-    jr *= weight;
-    r *= weight;
-    blocks.hpp.noalias() = jr.transpose() * jr;
-    blocks.gp.noalias() = jr.transpose() * r;
-    for (int j = 0; j < 2; ++j) {
-      const Eigen::Vector3d x_cam = rotation[j] * (point - center[j]);
-      if (!views_[j + 1].Evaluate(p, x_cam, &r, &jr)) return false;
-      weight = loss_.Apply(r.squaredNorm(), &cost);
-      jr *= weight;
-      r *= weight;
-      if (j == 0) {
-        AddView<0>(jr, r, rotation[0], x_cam, sphere, &blocks, &hcc, &gc);
-      } else {
-        AddView<1>(jr, r, rotation[1], x_cam, sphere, &blocks, &hcc, &gc);
-      }
+    std::array<WhitenedObservation, 3>& observations = out->observations[p];
+    for (int k = 0; k < 3; ++k) {
+      // View 1: the reference camera sees the point in its own frame.
+      WhitenedObservation& o = observations[k];
+      o.x_cam = k == 0 ? point : Eigen::Vector3d(rotation[k - 1] * (point - center[k - 1]));
+      if (!views_[k].Evaluate(p, o.x_cam, &o.r, &o.jr)) return false;
+      const double weight =
+          loss_.Apply(o.r.squaredNorm(), k == 0 && constant_points_ ? &fixed_cost : &cost);
+      o.jr *= weight;
+      o.r *= weight;
     }
-    out->points[p] = blocks;
   }
   if constexpr (kRot == 3) {
     // Gravity priors: Ceres' AutoDiff Jacobian in the quaternion's ambient coordinates times the
@@ -392,17 +417,43 @@ bool Engine<Residual, kRot>::Evaluate(const Pose& pose,
       cost += 0.5 * prior_weight_ * prior_residual.squaredNorm();
       Eigen::Matrix<double, 4, 3, Eigen::RowMajor> plus_jacobian;
       quaternion_manifold_.PlusJacobian(pose.quaternion[j], plus_jacobian.data());
-      const Eigen::Matrix<double, 2, 3> jc = sqrt_weight * ambient * plus_jacobian;
-      const int offset = j == 0 ? 0 : kSize2;
-      hcc.template block<3, 3>(offset, offset).noalias() += jc.transpose() * jc;
-      gc.template segment<3>(offset).noalias() += jc.transpose() * (sqrt_weight * prior_residual);
+      out->prior_jacobian[j] = sqrt_weight * ambient * plus_jacobian;
+      out->prior_residual[j] = sqrt_weight * prior_residual;
     }
   }
   out->cost = cost;
   out->fixed_cost = fixed_cost;
-  out->hcc = hcc.template selfadjointView<Eigen::Lower>();
-  out->gc = gc;
   return std::isfinite(cost) && std::isfinite(fixed_cost);
+}
+
+// The normal equations from EvaluateResiduals' whitened observations (section 13.3): only for an
+// iterate the loop continues from, not for a rejected or final candidate (section 13.5).
+template <typename Residual, int kRot>
+void Engine<Residual, kRot>::Linearize(Linearization* lin) const {
+  PoseMatrix hcc = PoseMatrix::Zero();
+  PoseVector gc = PoseVector::Zero();
+  for (std::size_t p = 0; p < lin->observations.size(); ++p) {
+    const std::array<WhitenedObservation, 3>& observations = lin->observations[p];
+    // Summed in place: a local copy was read back by pairs across the coupling's misaligned
+    // columns (3 x 3 + 3 x m doubles), stalling on store forwarding.
+    PointBlocks& blocks = lin->points[p];
+    blocks.hpp.noalias() = observations[0].jr.transpose() * observations[0].jr;
+    blocks.gp.noalias() = observations[0].jr.transpose() * observations[0].r;
+    const WhitenedObservation& o2 = observations[1];
+    AddView<0>(o2.jr, o2.r, lin->rotation[0], o2.x_cam, lin->sphere, &blocks, &hcc, &gc);
+    const WhitenedObservation& o3 = observations[2];
+    AddView<1>(o3.jr, o3.r, lin->rotation[1], o3.x_cam, lin->sphere, &blocks, &hcc, &gc);
+  }
+  if constexpr (kRot == 3) {
+    for (int j = 0; j < 2; ++j) {
+      const Eigen::Matrix<double, 2, 3>& jc = lin->prior_jacobian[j];
+      const int offset = j == 0 ? 0 : kSize2;
+      hcc.template block<3, 3>(offset, offset).noalias() += jc.transpose() * jc;
+      gc.template segment<3>(offset).noalias() += jc.transpose() * lin->prior_residual[j];
+    }
+  }
+  lin->hcc = hcc.template selfadjointView<Eigen::Lower>();
+  lin->gc = gc;
 }
 
 // A warm start (section 13.6): Build() was given points it kept, and the points move.
@@ -455,20 +506,20 @@ bool Engine<Residual, kRot>::ComputeStep(double radius,
     reduced(i, i) += Damping(lin.hcc(i, i), pose_scale_squared_[i], radius);
   PoseVector rhs = -lin.gc;
   if (!constant_points_) {
+    // The inverses in a loop of their own: the points' divisions (d_i, 1 / det) are independent
+    // and overlap there, where each point's products had waited on its own.
     for (std::size_t p = 0; p < lin.points.size(); ++p) {
-      const PointBlocks& blocks = lin.points[p];
-      Eigen::Matrix3d damped = blocks.hpp;
+      const Eigen::Matrix3d& hpp = lin.points[p].hpp;
+      Eigen::Matrix3d damped = hpp;
       for (int i = 0; i < 3; ++i) {
-        damped(i, i) += Damping(blocks.hpp(i, i), point_scale_squared_[p][i], radius);
+        damped(i, i) += Damping(hpp(i, i), point_scale_squared_[p][i], radius);
       }
       point_inverse_[p] = damped.inverse();
+    }
+    for (std::size_t p = 0; p < lin.points.size(); ++p) {
+      const PointBlocks& blocks = lin.points[p];
       const Eigen::Matrix<double, kSize, 3> w = blocks.hpc.transpose() * point_inverse_[p];
-      // Symmetric: the lower triangle only, all the Cholesky factorisation reads. Column by column
-      // (lazy products): the whole 11 x 3 by 3 x 11 product went through Eigen's general
-      // matrix product (packing and a blocked kernel), 1.6x the time of the gravity-prior step.
-      for (int c = 0; c < kSize; ++c) {
-        reduced.col(c).tail(kSize - c).noalias() -= w.bottomRows(kSize - c) * blocks.hpc.col(c);
-      }
+      SubtractLowerProduct(w, blocks.hpc, &reduced, std::make_integer_sequence<int, kSize>());
       rhs.noalias() += w * blocks.gp;
     }
   }
@@ -667,7 +718,7 @@ void Engine<Residual, kRot>::Solve(ceres::Solver::Summary* summary) {
     }
     num_consecutive_invalid_steps = 0;
 
-    // The candidate, linearised at once: it becomes the iterate if the step is accepted.
+    // The candidate's cost only: it is linearised if the step is accepted (Ceres' order).
     Plus(x_, pose_step, &candidate_x_);
     double step_norm_squared = 0.0;
     for (int j = 0; j < 2; ++j) {
@@ -690,7 +741,7 @@ void Engine<Residual, kRot>::Solve(ceres::Solver::Summary* summary) {
         step_norm_squared += (candidate_points_[p] - points_[p]).squaredNorm();
       }
     }
-    const double candidate_cost = Evaluate(candidate_x_, candidate_points_, &candidate_)
+    const double candidate_cost = EvaluateResiduals(candidate_x_, candidate_points_, &candidate_)
                                       ? candidate_.cost
                                       : std::numeric_limits<double>::max();
     iteration.step_norm = std::sqrt(step_norm_squared);
@@ -725,6 +776,7 @@ void Engine<Residual, kRot>::Solve(ceres::Solver::Summary* summary) {
       std::swap(x_, candidate_x_);
       points_.swap(candidate_points_);
       std::swap(current_, candidate_);
+      Linearize(&current_);
       x_norm = AmbientNorm(x_, points_);
       gradient_max_norm = GradientMaxNorm();
       iteration.cost = current_.cost + current_.fixed_cost;

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
+#include "refine_with_shared_error.h"
 #include "trigrav/initializers/three_view_error.h"
 
 namespace trigrav {
@@ -91,18 +93,17 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
   }
 
   const auto refinement_start = std::chrono::steady_clock::now();
-  const ThreeViewReprojectionError error(observations);  // the re-classification's
+  // The inlier error, for the runs' adjusters and the re-classification.
+  const auto error = std::make_shared<const ThreeViewReprojectionError>(observations);
   estimate.timings.reclassification_s = SecondsSince(refinement_start);
   const double threshold = options.robust.InlierThreshold(observations);
   std::vector<char> inliers = ransac.inliers;
   ThreeViewEstimateTimings& timings = estimate.timings;
   for (int run = 0; run <= options.reclassification_rounds; ++run) {
     // A later run starts from the last refinement's pose and points.
-    ThreeViewRefinement refinement =
-        run == 0 ? RefineThreeViewPose(observations, estimate.refined, inliers,
-                                       options.bundle_adjustment)
-                 : RefineThreeViewPose(observations, estimate.refined, inliers,
-                                       options.bundle_adjustment, estimate.refinement);
+    ThreeViewRefinement refinement = internal::RefineThreeViewPose(
+        observations, error, estimate.refined, inliers, options.bundle_adjustment,
+        run == 0 ? nullptr : &estimate.refinement);
     timings.build_s += refinement.build_s;
     timings.solve_s += refinement.solve_s;
     timings.covariance_s += refinement.covariance_s;
@@ -127,7 +128,7 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
     std::vector<char> next(observations.size(), 0);
     int num_next = 0;
     for (std::size_t i = 0; i < next.size(); ++i) {
-      next[i] = error(prepared, i) <= threshold ? 1 : 0;
+      next[i] = (*error)(prepared, i) <= threshold ? 1 : 0;
       num_next += next[i];
     }
     timings.reclassification_s += SecondsSince(reclassification_start);

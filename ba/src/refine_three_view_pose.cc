@@ -5,7 +5,9 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
+#include "refine_with_shared_error.h"
 #include "trigrav/ba/three_view_covariance.h"
 
 namespace trigrav {
@@ -16,22 +18,28 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Both overloads; known_* are the previous refinement's triplets and points (empty for none).
-ThreeViewRefinement Refine(const ThreeViewObservations& observations,
-                           const ThreeViewPose& initial,
-                           const std::vector<char>& inliers,
-                           const ThreeViewBundleAdjustmentOptions& options,
-                           const std::vector<int>& known_triplets,
-                           const std::vector<Eigen::Vector3d>& known_points) {
+}  // namespace
+
+namespace internal {
+
+ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observations,
+                                        std::shared_ptr<const ThreeViewReprojectionError> error,
+                                        const ThreeViewPose& initial,
+                                        const std::vector<char>& inliers,
+                                        const ThreeViewBundleAdjustmentOptions& options,
+                                        const ThreeViewRefinement* previous) {
   auto start = std::chrono::steady_clock::now();
   if (inliers.size() != observations.size()) {
     throw std::invalid_argument("trigrav: RefineThreeViewPose: the inlier mask has " +
                                 std::to_string(inliers.size()) + " entries for " +
                                 std::to_string(observations.size()) + " triplets");
   }
-  // The adjuster checks the observations and options (once).
-  ThreeViewBundleAdjuster adjuster(
-      observations, ThreeViewBundleAdjustmentConfig::FromInlierMask(inliers), options);
+  // The adjuster (or the error, built from them) checks the observations, and the options.
+  const ThreeViewBundleAdjustmentConfig config =
+      ThreeViewBundleAdjustmentConfig::FromInlierMask(inliers);
+  ThreeViewBundleAdjuster adjuster =
+      error == nullptr ? ThreeViewBundleAdjuster(observations, config, options)
+                       : ThreeViewBundleAdjuster(observations, std::move(error), config, options);
   ThreeViewRefinement refinement;
   refinement.pose = initial;
   // An empty config means all triplets to the adjuster; an empty mask means none.
@@ -39,7 +47,9 @@ ThreeViewRefinement Refine(const ThreeViewObservations& observations,
     refinement.summary.message = "no inlier triplets to refine on";
     return refinement;
   }
-  const bool built = adjuster.Build(initial, known_triplets, known_points);
+  const bool built = previous == nullptr
+                         ? adjuster.Build(initial)
+                         : adjuster.Build(initial, previous->triplets, previous->points_in_cam1);
   refinement.build_s = SecondsSince(start);
   if (!built) {
     refinement.summary.message = adjuster.message();
@@ -67,13 +77,13 @@ ThreeViewRefinement Refine(const ThreeViewObservations& observations,
   return refinement;
 }
 
-}  // namespace
+}  // namespace internal
 
 ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observations,
                                         const ThreeViewPose& initial,
                                         const std::vector<char>& inliers,
                                         const ThreeViewBundleAdjustmentOptions& options) {
-  return Refine(observations, initial, inliers, options, {}, {});
+  return internal::RefineThreeViewPose(observations, nullptr, initial, inliers, options, nullptr);
 }
 
 ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observations,
@@ -81,8 +91,7 @@ ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observation
                                         const std::vector<char>& inliers,
                                         const ThreeViewBundleAdjustmentOptions& options,
                                         const ThreeViewRefinement& previous) {
-  return Refine(observations, initial, inliers, options, previous.triplets,
-                previous.points_in_cam1);
+  return internal::RefineThreeViewPose(observations, nullptr, initial, inliers, options, &previous);
 }
 
 }  // namespace trigrav

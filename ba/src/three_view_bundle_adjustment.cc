@@ -136,10 +136,22 @@ double ThreeViewBundleAdjustmentOptions::ObservationSigma(
 ThreeViewBundleAdjuster::ThreeViewBundleAdjuster(const ThreeViewObservations& observations,
                                                  const ThreeViewBundleAdjustmentConfig& config,
                                                  const ThreeViewBundleAdjustmentOptions& options)
-    : observations_(observations),
-      error_(observations),  // checks the observations
-      config_(config),
-      options_(options) {
+    : ThreeViewBundleAdjuster(
+          observations,
+          std::make_shared<const ThreeViewReprojectionError>(observations),  // checks them
+          config,
+          options) {}
+
+ThreeViewBundleAdjuster::ThreeViewBundleAdjuster(
+    const ThreeViewObservations& observations,
+    std::shared_ptr<const ThreeViewReprojectionError> error,
+    const ThreeViewBundleAdjustmentConfig& config,
+    const ThreeViewBundleAdjustmentOptions& options)
+    : observations_(observations), error_(std::move(error)), config_(config), options_(options) {
+  if (error_ == nullptr || error_->size() != observations_.size()) {
+    throw std::invalid_argument(
+        "trigrav: ThreeViewBundleAdjuster: the inlier error is not of these observations");
+  }
   options_.Check();
   const int n = static_cast<int>(observations_.size());
   if (config_.triplets.empty()) {
@@ -222,7 +234,7 @@ bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial,
   auto in_front = [&](int i, const Eigen::Vector3d& x) {
     if (!x.allFinite()) return false;
     for (int k = 0; k < 3; ++k) {
-      if (!std::isfinite(error_.ObservationError(k, i, rotation[k] * (x - center[k])))) {
+      if (!std::isfinite(error_->ObservationError(k, i, rotation[k] * (x - center[k])))) {
         return false;
       }
     }
@@ -234,7 +246,7 @@ bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial,
     const bool known_in_front = known[i] >= 0 && in_front(i, x = known_points[known[i]] / scale);
     if (!known_in_front) {
       std::array<Eigen::Vector3d, 3> directions;
-      for (int k = 0; k < 3; ++k) directions[k] = rotation[k].transpose() * error_.rays()[k][i];
+      for (int k = 0; k < 3; ++k) directions[k] = rotation[k].transpose() * error_->rays()[k][i];
       if (!TriangulateMidpoint(center, directions, &x) || !in_front(i, x)) continue;
     }
     points_.push_back(x);
@@ -425,7 +437,7 @@ std::vector<Eigen::Vector3d> ThreeViewBundleAdjuster::ResidualNorms() const {
   std::vector<Eigen::Vector3d> norms(points_.size());
   for (std::size_t p = 0; p < points_.size(); ++p) {
     for (int k = 0; k < 3; ++k) {
-      norms[p][k] = error_.ObservationError(
+      norms[p][k] = error_->ObservationError(
           k, used_triplets_[p], pose.cam_from_ref[k] * (points_[p] - pose.center_in_ref[k]));
     }
   }

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -350,6 +351,32 @@ TEST(InitializeAndRefineTest, BadInput) {
     bad.bundle_adjustment.loss_scale_px = 0.0;
     EXPECT_THROW(InitializeAndRefine(ValidObservations(), bad), std::invalid_argument);
   }
+}
+
+// An adjuster given the observations' inlier error takes the same steps as one that builds its
+// own; an error that is missing or of other observations is refused.
+TEST(ThreeViewBundleAdjusterTest, SharedInlierErrorGivesTheSameRefinement) {
+  std::mt19937_64 rng(9);
+  const SyntheticScene scene = GenerateSyntheticScene(SceneOptions(0.0), &rng);
+  const ThreeViewObservations o = ToObservations(scene);
+  const ThreeViewBundleAdjustmentOptions options;
+  ThreeViewPose initial = scene.ground_truth;
+  initial.cam2_from_cam1.t += Eigen::Vector3d(0.02, -0.01, 0.01);
+  ThreeViewBundleAdjuster own(o, {}, options);
+  ThreeViewBundleAdjuster shared(o, std::make_shared<const ThreeViewReprojectionError>(o), {},
+                                 options);
+  ASSERT_TRUE(own.Build(initial));
+  ASSERT_TRUE(shared.Build(initial));
+  ASSERT_TRUE(own.Solve().success);
+  ASSERT_TRUE(shared.Solve().success);
+  EXPECT_EQ(own.CurrentPose().cam2_from_cam1.t, shared.CurrentPose().cam2_from_cam1.t);
+  EXPECT_EQ(own.CurrentPose().cam3_from_cam1.R, shared.CurrentPose().cam3_from_cam1.R);
+  EXPECT_EQ(own.points(), shared.points());
+
+  EXPECT_THROW(ThreeViewBundleAdjuster(o, nullptr, {}, options), std::invalid_argument);
+  const auto other = std::make_shared<const ThreeViewReprojectionError>(ValidObservations());
+  ASSERT_NE(other->size(), o.size());
+  EXPECT_THROW(ThreeViewBundleAdjuster(o, other, {}, options), std::invalid_argument);
 }
 
 TEST(ThreeViewBundleAdjusterTest, RejectsNonFiniteInitialPose) {

@@ -147,6 +147,14 @@ class ThreeViewBundleAdjuster {
   ThreeViewBundleAdjuster(const ThreeViewObservations& observations,
                           const ThreeViewBundleAdjustmentConfig& config,
                           const ThreeViewBundleAdjustmentOptions& options);
+  // The same with the inlier error of these observations already built, shared and read only (the
+  // adjuster takes each observation's ray and visibility from it; InitializeAndRefine builds one
+  // for all its runs and its re-classification). Throws std::invalid_argument if `error` is null or
+  // has not one entry per triplet, besides the above.
+  ThreeViewBundleAdjuster(const ThreeViewObservations& observations,
+                          std::shared_ptr<const ThreeViewReprojectionError> error,
+                          const ThreeViewBundleAdjustmentConfig& config,
+                          const ThreeViewBundleAdjustmentOptions& options);
   ~ThreeViewBundleAdjuster();
   ThreeViewBundleAdjuster(const ThreeViewBundleAdjuster&) = delete;
   ThreeViewBundleAdjuster& operator=(const ThreeViewBundleAdjuster&) = delete;
@@ -218,7 +226,8 @@ class ThreeViewBundleAdjuster {
   void SetEliminationOrdering(ceres::Solver::Options* solver_options);
 
   const ThreeViewObservations& observations_;
-  const ThreeViewReprojectionError error_;  // rays and visibility of every observation
+  // Rays and visibility of every observation.
+  const std::shared_ptr<const ThreeViewReprojectionError> error_;
   ThreeViewBundleAdjustmentConfig config_;
   ThreeViewBundleAdjustmentOptions options_;
   std::unique_ptr<ceres::Problem> problem_;

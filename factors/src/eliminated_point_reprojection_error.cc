@@ -99,11 +99,13 @@ bool EliminatedPointReprojectionError<Residual>::Evaluate(double const* const* p
   }
 
   // The point: minimised from the stored one, or, for Jacobians at the cameras of the last
-  // evaluation without them (Ceres' accepted trial step), from that evaluation's point (section
-  // 15.1).
+  // evaluation without them (Ceres' accepted trial step) and from the same stored point, from
+  // that evaluation's point (section 15.1).
   const std::array<double, 14> values = ParameterValues(parameters);
-  const bool at_trial = jacobians != nullptr && trial_valid_ && values == trial_parameters_;
-  Eigen::Vector3d point = at_trial ? trial_point_ : Eigen::Map<const Eigen::Vector3d>(point_);
+  const Eigen::Vector3d stored = Eigen::Map<const Eigen::Vector3d>(point_);
+  const bool at_trial =
+      jacobians != nullptr && trial_valid_ && values == trial_parameters_ && stored == trial_start_;
+  Eigen::Vector3d point = at_trial ? trial_point_ : stored;
   const auto observe = [this](int k, const Eigen::Vector3d& x_cam, Eigen::Vector2d* r,
                               Eigen::Matrix<double, 2, 3>* d_r_d_x) {
     return LinearizeObservation(observations_[k], x_cam, r, d_r_d_x);
@@ -123,6 +125,7 @@ bool EliminatedPointReprojectionError<Residual>::Evaluate(double const* const* p
     std::copy_n(point.data(), 3, point_);
   } else {
     trial_parameters_ = values;
+    trial_start_ = stored;
     trial_point_ = point;
     trial_valid_ = true;
   }

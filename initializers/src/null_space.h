@@ -64,9 +64,12 @@ Eigen::Matrix<double, N, 1> SmallestRightSingularVectorOfTriangular(
     const Eigen::Matrix<double, N, N>& R) {
   using Vector = Eigen::Matrix<double, N, 1>;
   using Matrix = Eigen::Matrix<double, N, N>;
+  // Scaled to a largest diagonal entry of 1 (the singular vectors do not change), so that neither
+  // the solves' reciprocals nor the powers of M overflow whatever the scale of R.
+  const double scale = std::max(R.diagonal().cwiseAbs().maxCoeff(), 1e-300);
   Matrix R_floor = R.template triangularView<Eigen::Upper>();
-  const double floor =
-      std::numeric_limits<double>::epsilon() * std::max(R.diagonal().cwiseAbs().maxCoeff(), 1e-300);
+  R_floor /= scale;
+  const double floor = std::numeric_limits<double>::epsilon();
   for (int i = 0; i < N; ++i) {
     if (std::abs(R_floor(i, i)) < floor) R_floor(i, i) = R_floor(i, i) < 0.0 ? -floor : floor;
   }

@@ -108,8 +108,10 @@ int SolveQuarticReal(const std::array<double, 5>& c,
                      double max_imag = 0.0);
 
 // Real roots of a sextic c[0] + ... + c[6] t^6 with c[6] not tiny relative to the other
-// coefficients: SolveDegreeTenReal on the sextic (Sturm sequences; the 6x6 companion matrix's
-// eigenvalues gave the same roots at 1.4x the cost of the whole sextic solver). Returns the count.
+// coefficients: SolveDegreeTenReal on the sextic (Sturm sequences). The 6x6 companion matrix's
+// eigenvalues, used before, cost 1.4x the whole sextic solver and also kept near-double roots that
+// rounding had made complex (imaginary part up to 1e-8 relative): noise-free, the sextic solver
+// then found the truth in 96.30 % of 20,000 scenes, now in 96.29 %. Returns the count.
 int SolveSexticReal(const std::array<double, 7>& c, std::array<double, 6>* roots);
 
 // Real roots of c[0] + ... + c[10] z^10 (Nister's degree-10 polynomial of the five-point solver).

@@ -510,7 +510,7 @@ TEST(DedicatedEngineTest, SecondRefinementStartsFromThePreviousPoints) {
 // over with the cameras fixed) reaches the optimum of a cold run (every point triangulated again)
 // in fewer iterations, and in fewer than Ceres' rules take from the same start (the kCeres engine,
 // whose steps the dedicated engine takes without the warm start).
-TEST(DedicatedEngineTest, WarmStartReachesTheColdOptimumInFewerIterations) {
+TEST(DedicatedEngineStatisticalTest, WarmStartReachesTheColdOptimumInFewerIterations) {
   std::mt19937_64 rng(53);
   int warm_iterations = 0;
   int ceres_iterations = 0;

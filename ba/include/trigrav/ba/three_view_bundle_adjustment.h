@@ -149,8 +149,10 @@ class ThreeViewBundleAdjuster {
                           const ThreeViewBundleAdjustmentOptions& options);
   // The same with the inlier error of these observations already built, shared and read only (the
   // adjuster takes each observation's ray and visibility from it; InitializeAndRefine builds one
-  // for all its runs and its re-classification). Throws std::invalid_argument if `error` is null or
-  // has not one entry per triplet, besides the above.
+  // for all its runs and its re-classification). `error` must have been built from these very
+  // observations: its construction checked them, and they are not checked again; an error of other
+  // observations with as many triplets is not detected. Throws std::invalid_argument if `error` is
+  // null or has not one entry per triplet, for bad options or a triplet index out of range.
   ThreeViewBundleAdjuster(const ThreeViewObservations& observations,
                           std::shared_ptr<const ThreeViewReprojectionError> error,
                           const ThreeViewBundleAdjustmentConfig& config,

@@ -23,10 +23,11 @@
 // stores its result there. Ceres computes Jacobians at its accepted iterates only, so the trial
 // steps it rejects leave the point alone, and after ceres::Solve *point is the point of the
 // solution. An evaluation with Jacobians at exactly the parameters of the evaluation without them
-// just before (Ceres' accepted trial step) starts from that evaluation's point instead, already at
-// the minimum for those cameras. Evaluate returns false when the point cannot be found: an
-// observation that cannot see it, or a singular system (no parallax). Evaluations of one factor
-// must not run concurrently (Ceres evaluates each residual block once at a time).
+// just before (Ceres' accepted trial step), with *point unchanged since, starts from that
+// evaluation's point instead, already minimised for those cameras. Evaluate returns false when the
+// point cannot be found: an observation that cannot see it, or a singular system (no parallax).
+// Evaluations of one factor must not run concurrently (Ceres evaluates each residual block once at
+// a time).
 
 #include <ceres/cost_function.h>
 #include <ceres/loss_function.h>
@@ -85,9 +86,11 @@ class EliminatedPointReprojectionError final : public ceres::CostFunction {
   std::array<Eigen::Matrix3d, 3> alignments_;  // yaw-only: A_1, A_2, A_3
   const ceres::LossFunction* loss_;
   double* point_;
-  // The last evaluation without Jacobians, if it succeeded: its parameter values and point.
+  // The last evaluation without Jacobians, if it succeeded: its parameter values, the *point it
+  // started from and the point it found.
   mutable bool trial_valid_ = false;
   mutable std::array<double, 14> trial_parameters_;
+  mutable Eigen::Vector3d trial_start_;
   mutable Eigen::Vector3d trial_point_;
 };
 

@@ -78,22 +78,14 @@ void SortByKey(int count, Key&& key, std::array<T, N>* items) {
   }
 }
 
-// A yaw as its cosine and sine (no trigonometric calls in the hot path).
-struct Yaw {
-  double c = 1.0, s = 0.0;
-  // theta = theta_0 + 2 atan(t) with cos/sin from the half-angle formulas.
-  static Yaw FromCayley(double t, const Offset& offset) {
-    const double denominator = 1.0 + t * t;
-    const double c_phi = (1.0 - t * t) / denominator, s_phi = 2.0 * t / denominator;
-    return {c_phi * offset.c - s_phi * offset.s, s_phi * offset.c + c_phi * offset.s};
-  }
-  double Angle() const { return std::atan2(s, c); }
-  Eigen::Matrix3d Matrix() const {
-    Eigen::Matrix3d R;
-    R << c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c;
-    return R;
-  }
-};
+using internal::Yaw;
+
+// theta = theta_0 + 2 atan(t), with cos/sin from the half-angle formulas.
+Yaw YawFromCayley(double t, const Offset& offset) {
+  const double denominator = 1.0 + t * t;
+  const double c_phi = (1.0 - t * t) / denominator, s_phi = 2.0 * t / denominator;
+  return {c_phi * offset.c - s_phi * offset.s, s_phi * offset.c + c_phi * offset.s};
+}
 
 // R_y(theta) x = cos(theta) A + sin(theta) B + C with A = (x, 0, z), B = (z, 0, -x), C = (0, y, 0)
 // (derivations.md section 1.4).
@@ -251,7 +243,7 @@ int UprightPairRoots(const MinimalRays& xk,
   int count = 0;
   for (int i = 0; i < num_t; ++i) {
     // Everything below is homogeneous in w = 1 + t^2 > 0, so the yaw is carried unnormalised,
-    // (c, sn) = w (cos theta, sin theta) (Yaw::FromCayley times w), and m_n = w m_n(theta).
+    // (c, sn) = w (cos theta, sin theta) (YawFromCayley times w), and m_n = w m_n(theta).
     const double t_squared = t[i] * t[i];
     const double w = 1.0 + t_squared, c_phi = 1.0 - t_squared, s_phi = 2.0 * t[i];
     const double c = c_phi * offset.c - s_phi * offset.s, sn = s_phi * offset.c + c_phi * offset.s;
@@ -525,7 +517,7 @@ int SolveSexticAligned(const Rays& x1,
   int count = 0;
   const std::array<Eigen::Vector3d, 5> cross = system.Cross(*offset);
   for (int i = 0; i < num_t; ++i) {
-    const Yaw yaw2 = Yaw::FromCayley(t[i], *offset);
+    const Yaw yaw2 = YawFromCayley(t[i], *offset);
     // (cos theta_3, sin theta_3, 1) ~ row_12 x row_13 at this t.
     Eigen::Vector3d direction = cross[4];
     for (int d = 3; d >= 0; --d) direction = direction * t[i] + cross[d];
@@ -549,7 +541,7 @@ int SolveSexticAligned(const Rays& x1,
     const double score = R_F.lazyProduct(centers).norm() / sigma_max;
 
     Candidate& candidate = candidates[count];
-    if (!internal::OrientScaleAndMakePose(x1, x2, x3, yaw2.Angle(), centers.head<3>(), yaw3.Angle(),
+    if (!internal::OrientScaleAndMakePose(x1, x2, x3, yaw2, centers.head<3>(), yaw3,
                                           centers.tail<3>(), &candidate.pose) ||
         !PointsInFront(x1, x2, candidate.pose.cam2_from_cam1) ||
         !PointsInFront(x1, x3, candidate.pose.cam3_from_cam1) || !std::isfinite(score)) {

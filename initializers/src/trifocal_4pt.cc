@@ -1,7 +1,6 @@
 #include "trigrav/initializers/trifocal_4pt.h"
 
 #include <Eigen/Cholesky>
-#include <Eigen/QR>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -95,19 +94,19 @@ std::array<BasisEntry, 26> ConstrainedTensorBasis(const Eigen::Vector3d& e,
   }};
 }
 
+using internal::Yaw;
+
 // Yaws and centres (up to a common factor) of an aligned estimate.
 struct AlignedEstimate {
-  double theta2 = 0.0, theta3 = 0.0;
+  Yaw yaw2, yaw3;
   Eigen::Vector3d center2 = Eigen::Vector3d::Zero(), center3 = Eigen::Vector3d::Zero();
 };
 
 // Centres from q given the yaws: R2 c2 = (Q9, ty2, Q13), R3 c3 = (-Q10, ty3, -Q12) (derivations.md
 // section 3).
 void CentersFromQ(const Vector17d& q, double ty2, double ty3, AlignedEstimate* estimate) {
-  estimate->center2 =
-      RotationAboutY(estimate->theta2).transpose() * Eigen::Vector3d(q[8], ty2, q[12]);
-  estimate->center3 =
-      RotationAboutY(estimate->theta3).transpose() * Eigen::Vector3d(-q[9], ty3, -q[11]);
+  estimate->center2 = estimate->yaw2.Matrix().transpose() * Eigen::Vector3d(q[8], ty2, q[12]);
+  estimate->center3 = estimate->yaw3.Matrix().transpose() * Eigen::Vector3d(-q[9], ty3, -q[11]);
 }
 
 // Constraint enforcement for given epipoles (eqs f2-f7) and the pose read from a (derivations.md
@@ -152,40 +151,70 @@ bool EnforceConstraints(const IncidenceMatrix& M,
   // e'' = -R3 c3 / beta: c2 = -a6 R2^T e', c3 = -a3 R3^T e'' up to the common factor 1/lambda.
   const double sign3 = a[2] < 0.0 ? -1.0 : 1.0;
   const double sign6 = a[5] < 0.0 ? -1.0 : 1.0;
-  estimate->theta2 = std::atan2(sign3 * a[1], sign3 * a[0]);
-  estimate->theta3 = std::atan2(sign6 * a[4], sign6 * a[3]);
-  estimate->center2 = -a[5] * RotationAboutY(estimate->theta2).transpose() * epipole2;
-  estimate->center3 = -a[2] * RotationAboutY(estimate->theta3).transpose() * epipole3;
+  estimate->yaw2 = Yaw::FromDirection(sign3 * a[0], sign3 * a[1]);
+  estimate->yaw3 = Yaw::FromDirection(sign6 * a[3], sign6 * a[4]);
+  estimate->center2 = -a[5] * estimate->yaw2.Matrix().transpose() * epipole2;
+  estimate->center3 = -a[2] * estimate->yaw3.Matrix().transpose() * epipole3;
   return true;
 }
 
-// Yaws from all 8 relations of eq. c5 by least squares, then ty2, ty3 (derivations.md section 4.2).
+// The least-squares read of q (derivations.md section 4.2): the yaws from the 8 relations of eq.
+// c5, then ty2, ty3 from those of Q4, Q5, Q11, Q2, Q7, both by their normal equations in closed
+// form. False if a horizontal epipole vanishes (relative to the other): the yaws are then
+// undefined.
+struct LeastSquaresRead {
+  Yaw yaw2, yaw3;
+  double ty2 = 0.0, ty3 = 0.0;
+};
+
+bool ReadLeastSquares(const Vector17d& q, LeastSquaresRead* read) {
+  // Normal equations in z2 = c2 + i s2, z3 = c3 + i s3: [2A, conj(w); w, 2B] (z2; z3) = (b01; b23)
+  // with A = Q10^2 + Q12^2, B = Q9^2 + Q13^2, |w|^2 = AB, determinant 3AB.
+  const double A = q[9] * q[9] + q[11] * q[11];
+  const double B = q[8] * q[8] + q[12] * q[12];
+  constexpr double kMinRatio = 1e-8;
+  if (!(std::min(A, B) > kMinRatio * std::max(A, B))) return false;
+  const double u = q[8] * q[9] + q[11] * q[12], v = q[9] * q[12] - q[8] * q[11];
+  const double b0 = q[9] * (q[0] + q[15]) + q[11] * (q[2] + q[16]);
+  const double b1 = q[9] * (q[13] - q[5]) + q[11] * (q[14] - q[7]);
+  const double b2 = q[8] * (q[0] + q[14]) + q[12] * (q[5] + q[16]);
+  const double b3 = q[8] * (q[13] - q[2]) + q[12] * (q[15] - q[7]);
+  // z2 ~ 2B b01 - conj(w) b23, z3 ~ 2A b23 - w b01 (the common factor 1 / (3AB) drops out).
+  read->yaw2 =
+      Yaw::FromDirection(2.0 * B * b0 - (u * b2 + v * b3), 2.0 * B * b1 - (u * b3 - v * b2));
+  read->yaw3 =
+      Yaw::FromDirection(2.0 * A * b2 - (u * b0 - v * b1), 2.0 * A * b3 - (u * b1 + v * b0));
+  const double c2 = read->yaw2.c, s2 = read->yaw2.s;
+  const double c3 = read->yaw3.c, s3 = read->yaw3.s;
+  // Q4 = c3 ty2, Q5 = -s3 ty2, Q11 = ty2 - ty3, Q2 = -c2 ty3, Q7 = s2 ty3: normal matrix
+  // [2, -1; -1, 2] for unit yaws, whose inverse is [2, 1; 1, 2] / 3.
+  const double n0 = c3 * q[3] - s3 * q[4] + q[10];
+  const double n1 = -q[10] - c2 * q[1] + s2 * q[6];
+  read->ty2 = (2.0 * n0 + n1) / 3.0;
+  read->ty3 = (n0 + 2.0 * n1) / 3.0;
+  return read->yaw2.IsFinite() && read->yaw3.IsFinite() && std::isfinite(read->ty2) &&
+         std::isfinite(read->ty3);
+}
+
+// The pose of the least-squares read (derivations.md section 4.2).
 bool EstimateLeastSquares(const Vector17d& q, AlignedEstimate* estimate) {
-  Eigen::Matrix<double, 8, 4> M;
-  Eigen::Matrix<double, 8, 1> rhs;
-  M << q[9], 0, q[8], 0,     //
-      q[11], 0, 0, -q[8],    //
-      0, -q[9], q[12], 0,    //
-      0, -q[11], 0, -q[12],  //
-      0, q[9], 0, q[8],      //
-      0, q[11], q[8], 0,     //
-      q[9], 0, 0, q[12],     //
-      q[11], 0, q[12], 0;
-  rhs << q[0], q[2], q[5], q[7], q[13], q[14], q[15], q[16];
-  const Eigen::ColPivHouseholderQR<Eigen::Matrix<double, 8, 4>> qr(M);
-  if (qr.rank() < 4) return false;
-  const Eigen::Vector4d cs = qr.solve(rhs);
-  estimate->theta2 = std::atan2(cs[1], cs[0]);
-  estimate->theta3 = std::atan2(cs[3], cs[2]);
-  const double c2 = std::cos(estimate->theta2), s2 = std::sin(estimate->theta2);
-  const double c3 = std::cos(estimate->theta3), s3 = std::sin(estimate->theta3);
-  // Q4 = c3 ty2, Q5 = -s3 ty2, Q11 = ty2 - ty3, Q2 = -c2 ty3, Q7 = s2 ty3.
-  Eigen::Matrix<double, 5, 2> N;
-  Eigen::Matrix<double, 5, 1> n_rhs;
-  N << c3, 0, -s3, 0, 1, -1, 0, -c2, 0, s2;
-  n_rhs << q[3], q[4], q[10], q[1], q[6];
-  const Eigen::Vector2d ty = N.colPivHouseholderQr().solve(n_rhs);
-  CentersFromQ(q, ty[0], ty[1], estimate);
+  LeastSquaresRead read;
+  if (!ReadLeastSquares(q, &read)) return false;
+  estimate->yaw2 = read.yaw2;
+  estimate->yaw3 = read.yaw3;
+  CentersFromQ(q, read.ty2, read.ty3, estimate);
+  return true;
+}
+
+// Epipoles e' ~ R2 c2 = (Q9, ty2, Q13) and e'' ~ R3 c3 = (-Q10, ty3, -Q12) of the least-squares
+// read; where that is undefined (a horizontal epipole vanishes), the tensor's own epipoles (eq.
+// f1). Derivations.md section 4.3 step 1.
+bool EpipolesFromQ(const Vector17d& q, Eigen::Vector3d* epipole2, Eigen::Vector3d* epipole3) {
+  LeastSquaresRead read;
+  if (!ReadLeastSquares(q, &read))
+    return internal::EpipolesFromTensor(TensorFromQ(q), epipole2, epipole3);
+  *epipole2 = Eigen::Vector3d(q[8], read.ty2, q[12]).normalized();
+  *epipole3 = Eigen::Vector3d(-q[9], read.ty3, -q[11]).normalized();
   return true;
 }
 
@@ -195,22 +224,22 @@ bool EstimatePaperClosedForm(const Vector17d& q, AlignedEstimate* estimate) {
   const double denominator = q[9] * q[12] - q[8] * q[11];
   const double s2 = (q[7] * q[8] + q[12] * q[13]) / denominator;
   const double c2 = (q[0] * q[12] - q[8] * q[16]) / denominator;
-  estimate->theta2 = std::atan2(s2, c2);
-  const double c2n = std::cos(estimate->theta2), s2n = std::sin(estimate->theta2);
+  estimate->yaw2 = Yaw::FromDirection(c2, s2);
+  const double c2n = estimate->yaw2.c, s2n = estimate->yaw2.s;
   const double s3 = -(q[7] + s2n * q[11]) / q[12];
   const double c3 = (q[0] - c2n * q[9]) / q[8];
-  estimate->theta3 = std::atan2(s3, c3);
-  const double c3n = std::cos(estimate->theta3), s3n = std::sin(estimate->theta3);
+  estimate->yaw3 = Yaw::FromDirection(c3, s3);
+  const double c3n = estimate->yaw3.c, s3n = estimate->yaw3.s;
   CentersFromQ(q, c3n * q[3] - s3n * q[4], s2n * q[6] - c2n * q[1], estimate);  // eqs c9, c11
-  return std::isfinite(estimate->theta2) && std::isfinite(estimate->theta3);
+  return estimate->yaw2.IsFinite() && estimate->yaw3.IsFinite();
 }
 
 // (c2; c3) = null vector of the stacked translation rows with the yaws fixed (derivations.md
 // section 3.4). Rows = 16: the minimal system at fixed size. frame(n): TripletFrame of triplet n.
 template <int Rows, typename FrameFunction>
 void ResolveCenters(std::size_t count, const FrameFunction& frame, AlignedEstimate* estimate) {
-  const Eigen::Matrix3d R2 = RotationAboutY(estimate->theta2);
-  const Eigen::Matrix3d R3 = RotationAboutY(estimate->theta3);
+  const Eigen::Matrix3d R2 = estimate->yaw2.Matrix();
+  const Eigen::Matrix3d R3 = estimate->yaw3.Matrix();
   const auto rows = [&](std::size_t n) {
     return internal::TranslationRows(internal::MakeTranslationTerms(frame(n), R2, R3));
   };
@@ -240,8 +269,8 @@ template <typename FrameFunction>
 void PolishYawsAndCenters(std::size_t count,
                           const FrameFunction& frame,
                           AlignedEstimate* estimate) {
-  const Eigen::Matrix3d R2 = RotationAboutY(estimate->theta2);
-  const Eigen::Matrix3d R3 = RotationAboutY(estimate->theta3);
+  const Eigen::Matrix3d R2 = estimate->yaw2.Matrix();
+  const Eigen::Matrix3d R3 = estimate->yaw3.Matrix();
   Vector6d centers;
   centers << estimate->center2, estimate->center3;
   const double norm = centers.norm();
@@ -300,8 +329,14 @@ void PolishYawsAndCenters(std::size_t count,
     step = -JtJ.ldlt().solve(Jtr);
   }
   if (!step.allFinite()) return;
-  estimate->theta2 += step[0];
-  estimate->theta3 += step[1];
+  // theta_k + delta applied as the direction (cos, sin) + delta (-sin, cos), i.e. theta_k +
+  // atan(delta): equal to third order, so the step keeps its quadratic convergence, and no
+  // trigonometric call.
+  const auto turn = [](const Yaw& yaw, double delta) {
+    return Yaw::FromDirection(yaw.c - delta * yaw.s, yaw.s + delta * yaw.c);
+  };
+  estimate->yaw2 = turn(estimate->yaw2, step[0]);
+  estimate->yaw3 = turn(estimate->yaw3, step[1]);
   centers += step.tail<6>();
   estimate->center2 = norm * centers.head<3>();
   estimate->center3 = norm * centers.tail<3>();
@@ -350,7 +385,7 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1,
   Eigen::Vector3d epipole2, epipole3;
   switch (options.recovery) {
     case Trifocal4ptRecovery::kEnforced:
-      ok = internal::EpipolesFromTensor(TensorFromQ(q), &epipole2, &epipole3) &&
+      ok = EpipolesFromQ(q, &epipole2, &epipole3) &&
            EnforceConstraints(M, epipole2, epipole3, &estimate);
       break;
     case Trifocal4ptRecovery::kLeastSquares:
@@ -360,13 +395,13 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1,
       ok = EstimatePaperClosedForm(q, &estimate);
       break;
   }
-  if (!ok || !std::isfinite(estimate.theta2) || !std::isfinite(estimate.theta3)) return 0;
+  if (!ok || !estimate.yaw2.IsFinite() || !estimate.yaw3.IsFinite()) return 0;
   if (options.resolve_translations) ResolveCenters<Rows>(x1.size(), frame, &estimate);
   if (options.recovery == Trifocal4ptRecovery::kEnforced) {
     // Epipoles of the current pose, e' ~ R2 c2 and e'' ~ R3 c3, then enforcement and centres again.
     for (int iteration = 0; iteration < options.epipole_iterations; ++iteration) {
-      epipole2 = (RotationAboutY(estimate.theta2) * estimate.center2).normalized();
-      epipole3 = (RotationAboutY(estimate.theta3) * estimate.center3).normalized();
+      epipole2 = (estimate.yaw2.Matrix() * estimate.center2).normalized();
+      epipole3 = (estimate.yaw3.Matrix() * estimate.center3).normalized();
       if (!epipole2.allFinite() || !epipole3.allFinite() ||
           !EnforceConstraints(M, epipole2, epipole3, &estimate)) {
         return 0;
@@ -380,8 +415,8 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1,
   }
 
   ThreeViewPose pose;
-  if (!internal::OrientScaleAndMakePose(x1, x2, x3, estimate.theta2, estimate.center2,
-                                        estimate.theta3, estimate.center3, &pose)) {
+  if (!internal::OrientScaleAndMakePose(x1, x2, x3, estimate.yaw2, estimate.center2, estimate.yaw3,
+                                        estimate.center3, &pose)) {
     return 0;
   }
   solutions->push_back(pose);

@@ -41,17 +41,16 @@ CameraPose PoseFromYawAndCenter(const Eigen::Matrix3d& R, const Eigen::Vector3d&
 bool OrientScaleAndMakePose(const std::vector<Eigen::Vector3d>& x1,
                             const std::vector<Eigen::Vector3d>& x2,
                             const std::vector<Eigen::Vector3d>& x3,
-                            double theta2,
+                            const Yaw& yaw2,
                             Eigen::Vector3d center2,
-                            double theta3,
+                            const Yaw& yaw3,
                             Eigen::Vector3d center3,
                             ThreeViewPose* pose) {
-  if (!std::isfinite(theta2) || !std::isfinite(theta3) || !center2.allFinite() ||
-      !center3.allFinite()) {
+  if (!yaw2.IsFinite() || !yaw3.IsFinite() || !center2.allFinite() || !center3.allFinite()) {
     return false;
   }
-  const Eigen::Matrix3d R2 = RotationAboutY(theta2);
-  const Eigen::Matrix3d R3 = RotationAboutY(theta3);
+  const Eigen::Matrix3d R2 = yaw2.Matrix();
+  const Eigen::Matrix3d R3 = yaw3.Matrix();
   int votes = 0;
   for (std::size_t n = 0; n < x1.size(); ++n) {
     for (const double depth :

@@ -6,13 +6,38 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "trigrav/initializers/camera_pose.h"
 
 namespace trigrav {
 namespace internal {
+
+// A yaw R_y(theta) held as its cosine and sine: the solvers build rotations from it without
+// trigonometric calls (they cost about as much as a 6x6 triangular solve each).
+struct Yaw {
+  double c = 1.0, s = 0.0;
+  // The yaw of the direction (c, s), any positive length: atan2(s, c) without the call. (0, 0)
+  // gives theta = 0, as atan2 does; a non-finite input gives a non-finite yaw.
+  static Yaw FromDirection(double c, double s) {
+    const double scale = std::max(std::abs(c), std::abs(s));
+    if (scale == 0.0) return {};
+    c /= scale;
+    s /= scale;
+    const double inverse_norm = 1.0 / std::sqrt(c * c + s * s);
+    return {c * inverse_norm, s * inverse_norm};
+  }
+  double Angle() const { return std::atan2(s, c); }
+  bool IsFinite() const { return std::isfinite(c) && std::isfinite(s); }
+  Eigen::Matrix3d Matrix() const {
+    Eigen::Matrix3d R;
+    R << c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c;
+    return R;
+  }
+};
 
 // Orthonormal basis (p1, p2) of the plane orthogonal to x (x non-zero).
 inline void PerpendicularBasis(const Eigen::Vector3d& x, Eigen::Vector3d* p1, Eigen::Vector3d* p2) {
@@ -100,9 +125,9 @@ bool EpipolesFromTensor(const std::array<Eigen::Matrix3d, 3>& T,
 bool OrientScaleAndMakePose(const std::vector<Eigen::Vector3d>& x1,
                             const std::vector<Eigen::Vector3d>& x2,
                             const std::vector<Eigen::Vector3d>& x3,
-                            double theta2,
+                            const Yaw& yaw2,
                             Eigen::Vector3d center2,
-                            double theta3,
+                            const Yaw& yaw3,
                             Eigen::Vector3d center3,
                             ThreeViewPose* pose);
 

@@ -18,19 +18,18 @@ namespace trigrav {
 // triplets determine q up to scale. The default pipeline follows derivations.md section 4, which
 // corrects and completes the paper, plus one polish step of trigrav's own:
 //   1. q = least-squares null vector of the stacked 4N x 17 system (one row per x2/x3 perp pair);
-//   2. constraint enforcement (eqs f1-f7): epipoles from the null vectors of T_i, then the 6
-//   parameters
-//      a minimising |A E a| with |E a| = 1;
-//   3. yaws from a (derivations.md section 4.4: the paper's f2-f7 relax a1^2 + a2^2 = a3^2 and swap
-//   scales);
+//   2. constraint enforcement (eqs f1-f7): epipoles from the least-squares read of q
+//      (derivations.md sections 4.2-4.3; the null vectors of T_i where that read is undefined),
+//      then the 6 parameters a minimising |A E a| with |E a| = 1;
+//   3. yaws from a (derivations.md section 4.4: the paper's f2-f7 relax a1^2 + a2^2 = a3^2 and
+//      swap scales);
 //   4. translations re-solved linearly from all triplets with the yaws fixed (derivations.md
-//   section 3.4);
+//      section 3.4);
 //   5. optionally (epipole_iterations) epipoles from that pose, then steps 2-4 again;
-//   6. one Gauss-Newton step on the incidence residuals over yaws and centres jointly (not in the
-//   paper
-//      or derivations.md): noise-free it removes the rounding tail (max error 1e-8.3 -> 1e-11.6 deg
-//      over 2000 scenes); at 1 px with 4 triplets it cuts the median rotation error from 3.2 to
-//      0.95 deg;
+//   6. one Gauss-Newton step on the incidence residuals over yaws and centres jointly
+//      (derivations.md section 4.5, trigrav's own): noise-free it removes the rounding tail of the
+//      linear steps; with noise it moves the estimate towards the nearest minimum of the algebraic
+//      residual;
 //   7. the common sign of the translations by a cheirality vote, scale |c_2| = 1;
 //   8. poses mapped to the original frames with the corrected eq. b4 (see gravity.h).
 // With noise, the result depends slightly on which yaw the caller's alignment rotations choose (the

@@ -281,14 +281,20 @@ void PolishYawsAndCenters(std::size_t count,
   const auto K = [](const Eigen::Vector3d& v) { return Eigen::Vector3d(v.z(), 0.0, -v.x()); };
   const Eigen::Vector3d c2 = centers.head<3>(), Kc2 = K(c2);
   const Eigen::Vector3d c3 = centers.tail<3>(), Kc3 = K(c3);
-  // Normal equations of the 4N x 8 Jacobian [dr/dtheta2, dr/dtheta3, F], accumulated per triplet.
+  // Normal equations of the 4N x 8 Jacobian [dr/dtheta2, dr/dtheta3, F], accumulated per triplet
+  // in factored form: row (a, b) of F is [zr_b l_a^T, pu_a m_b^T] (l_a = left_R2_a, m_b =
+  // right_R3_b), so its 6 x 6 block is [(sum_b zr_b^2) sum_a l_a l_a^T, (sum_a pu_a l_a)(sum_b zr_b
+  // m_b)^T; ., (sum_a pu_a^2) sum_b m_b m_b^T] and a column v of the other entries gives
+  // F^T v = (sum_a (sum_b v_ab zr_b) l_a; sum_b (sum_a v_ab pu_a) m_b).
   Eigen::Matrix<double, 8, 8> JtJ = Eigen::Matrix<double, 8, 8>::Zero();
   Eigen::Matrix<double, 8, 1> Jtr = Eigen::Matrix<double, 8, 1>::Zero();
+  Eigen::Matrix3d ll = Eigen::Matrix3d::Zero(), mm = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d lm = Eigen::Matrix3d::Zero();
   for (std::size_t n = 0; n < count; ++n) {
     const internal::TripletFrame& f = frame(n);
     const internal::TranslationTerms t = internal::MakeTranslationTerms(f, R2, R3);
-    // Row (a, b) of r: zr_b (left_R2_a . c2) + pu_a (right_R3_b . c3); pu_a depends on theta2 and
-    // zr_b on theta3, with derivatives left_R2_a . K x1 and -right_R3_b . K x1.
+    // Row (a, b) of r: zr_b (l_a . c2) + pu_a (m_b . c3); pu_a depends on theta2 and zr_b on
+    // theta3, with derivatives l_a . K x1 and -m_b . K x1.
     const Eigen::Vector3d Kx1 = K(f.x1);
     double l_c2[2], l_Kc2[2], dpu[2], r_c3[2], r_Kc3[2], dzr[2];
     for (int i = 0; i < 2; ++i) {
@@ -299,21 +305,44 @@ void PolishYawsAndCenters(std::size_t count,
       r_Kc3[i] = t.right_R3[i].dot(Kc3);
       dzr[i] = -t.right_R3[i].dot(Kx1);
     }
-    Eigen::Matrix<double, 4, 8> J;
-    Eigen::Vector4d residuals;
+    // The yaw columns and the residual, entry (a, b) at index 2 a + b.
+    Eigen::Matrix<double, 4, 3> v;
     for (int a = 0; a < 2; ++a) {
       for (int b = 0; b < 2; ++b) {
-        const int row = 2 * a + b;
-        J(row, 0) = t.zr[b] * l_Kc2[a] + dpu[a] * r_c3[b];
-        J(row, 1) = dzr[b] * l_c2[a] + t.pu[a] * r_Kc3[b];
-        J.block<1, 3>(row, 2) = t.zr[b] * t.left_R2[a].transpose();
-        J.block<1, 3>(row, 5) = t.pu[a] * t.right_R3[b].transpose();
-        residuals[row] = t.zr[b] * l_c2[a] + t.pu[a] * r_c3[b];
+        v(2 * a + b, 0) = t.zr[b] * l_Kc2[a] + dpu[a] * r_c3[b];
+        v(2 * a + b, 1) = dzr[b] * l_c2[a] + t.pu[a] * r_Kc3[b];
+        v(2 * a + b, 2) = t.zr[b] * l_c2[a] + t.pu[a] * r_c3[b];
       }
     }
-    JtJ.noalias() += J.transpose().lazyProduct(J);
-    Jtr.noalias() += J.transpose().lazyProduct(residuals);
+    const Eigen::Matrix3d vtv = v.transpose() * v;
+    JtJ.topLeftCorner<2, 2>() += vtv.topLeftCorner<2, 2>();
+    Jtr.head<2>() += vtv.block<2, 1>(0, 2);
+    // F^T v for the three columns at once.
+    Eigen::Matrix<double, 6, 3> Ftv;
+    for (int j = 0; j < 3; ++j) {
+      const double za0 = v(0, j) * t.zr[0] + v(1, j) * t.zr[1];
+      const double za1 = v(2, j) * t.zr[0] + v(3, j) * t.zr[1];
+      const double pb0 = v(0, j) * t.pu[0] + v(2, j) * t.pu[1];
+      const double pb1 = v(1, j) * t.pu[0] + v(3, j) * t.pu[1];
+      Ftv.block<3, 1>(0, j) = za0 * t.left_R2[0] + za1 * t.left_R2[1];
+      Ftv.block<3, 1>(3, j) = pb0 * t.right_R3[0] + pb1 * t.right_R3[1];
+    }
+    JtJ.block<6, 2>(2, 0) += Ftv.leftCols<2>();
+    Jtr.tail<6>() += Ftv.col(2);
+    const double zz = t.zr[0] * t.zr[0] + t.zr[1] * t.zr[1];
+    const double pp = t.pu[0] * t.pu[0] + t.pu[1] * t.pu[1];
+    ll.noalias() +=
+        zz * (t.left_R2[0] * t.left_R2[0].transpose() + t.left_R2[1] * t.left_R2[1].transpose());
+    mm.noalias() += pp * (t.right_R3[0] * t.right_R3[0].transpose() +
+                          t.right_R3[1] * t.right_R3[1].transpose());
+    lm.noalias() += (t.pu[0] * t.left_R2[0] + t.pu[1] * t.left_R2[1]) *
+                    (t.zr[0] * t.right_R3[0] + t.zr[1] * t.right_R3[1]).transpose();
   }
+  JtJ.block<2, 6>(0, 2) = JtJ.block<6, 2>(2, 0).transpose();
+  JtJ.block<3, 3>(2, 2) = ll;
+  JtJ.block<3, 3>(2, 5) = lm;
+  JtJ.block<3, 3>(5, 2) = lm.transpose();
+  JtJ.block<3, 3>(5, 5) = mm;
   // Gauge: the step keeps c . delta_c = 0, weighted like an average row.
   Eigen::Matrix<double, 8, 1> gauge = Eigen::Matrix<double, 8, 1>::Zero();
   gauge.tail<6>() = centers;

@@ -414,7 +414,10 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1,
   Eigen::Vector3d epipole2, epipole3;
   switch (options.recovery) {
     case Trifocal4ptRecovery::kEnforced:
-      ok = EpipolesFromQ(q, &epipole2, &epipole3) &&
+      // Epipoles (derivations.md section 4.3 step 1): the least-squares read of q for the minimal
+      // system, the tensor's null vectors for more triplets.
+      ok = (Rows == 16 ? EpipolesFromQ(q, &epipole2, &epipole3)
+                       : internal::EpipolesFromTensor(TensorFromQ(q), &epipole2, &epipole3)) &&
            EnforceConstraints(M, epipole2, epipole3, &estimate);
       break;
     case Trifocal4ptRecovery::kLeastSquares:

@@ -64,8 +64,17 @@ void BindTrifocal4ptOptions(py::module_& m) {
       .value("ENFORCED", Trifocal4ptRecovery::kEnforced, "constraint enforcement (the default)")
       .value("LEAST_SQUARES", Trifocal4ptRecovery::kLeastSquares)
       .value("PAPER_CLOSED_FORM", Trifocal4ptRecovery::kPaperClosedForm);
+  py::enum_<Trifocal4ptEpipoles>(m, "Trifocal4ptEpipoles",
+                                 "Where the 4-point solver's constraint enforcement takes the "
+                                 "epipoles from.")
+      .value("LEAST_SQUARES_READ_IF_MINIMAL", Trifocal4ptEpipoles::kLeastSquaresReadIfMinimal,
+             "the least-squares read of the tensor for 4 triplets, its null vectors for more (the "
+             "default)")
+      .value("TENSOR_NULL_VECTORS", Trifocal4ptEpipoles::kTensorNullVectors,
+             "the tensor's null vectors at any size (the paper's)");
   OptionsClass<Trifocal4ptOptions>(m, "Trifocal4ptOptions", "Options of solve_trifocal_4pt.")
       .Field("recovery", &Trifocal4ptOptions::recovery, "Trifocal4ptRecovery")
+      .Field("epipoles", &Trifocal4ptOptions::epipoles, "Trifocal4ptEpipoles (ENFORCED)")
       .Field("resolve_translations", &Trifocal4ptOptions::resolve_translations,
              "re-solve the centres from all triplets with the yaws fixed")
       .Field("epipole_iterations", &Trifocal4ptOptions::epipole_iterations,

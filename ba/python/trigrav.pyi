@@ -108,8 +108,18 @@ class Trifocal4ptRecovery:
     @property
     def value(self) -> int: ...
 
+class Trifocal4ptEpipoles:
+    LEAST_SQUARES_READ_IF_MINIMAL: ClassVar[Trifocal4ptEpipoles]
+    TENSOR_NULL_VECTORS: ClassVar[Trifocal4ptEpipoles]
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
 class Trifocal4ptOptions:
     recovery: Trifocal4ptRecovery
+    epipoles: Trifocal4ptEpipoles
     resolve_translations: bool
     epipole_iterations: int
     polish_iterations: int
@@ -117,6 +127,7 @@ class Trifocal4ptOptions:
         self,
         *,
         recovery: Trifocal4ptRecovery = ...,
+        epipoles: Trifocal4ptEpipoles = ...,
         resolve_translations: bool = ...,
         epipole_iterations: int = ...,
         polish_iterations: int = ...,

@@ -34,7 +34,8 @@ DEFINE_string(
     "4pt",
     "Solver: 3pt (decoupled, best-ranked candidate), 3pt-sextic (the paper's system), "
     "4pt (trigrav's default pipeline), 4pt-unpolished (derivations.md section 4.3: no polish), "
-    "4pt-paper (paper III-D: enforced, no translation re-solve, no polish), "
+    "4pt-paper (paper III-D: enforced with the tensor's epipoles, no translation re-solve, no "
+    "polish), "
     "4pt-closed-form (paper eqs c8-c11, no enforcement), 4pt-least-squares (derivations.md "
     "section 4.2)");
 DEFINE_double(noise_px, 1.0, "Image noise sigma in pixels (all three views).");
@@ -59,9 +60,12 @@ using GravitySolver = std::function<int(const Rays&,
 
 GravitySolver Trifocal4pt(trigrav::Trifocal4ptRecovery recovery,
                           bool resolve_translations,
-                          int polish_iterations) {
+                          int polish_iterations,
+                          trigrav::Trifocal4ptEpipoles epipoles =
+                              trigrav::Trifocal4ptEpipoles::kLeastSquaresReadIfMinimal) {
   trigrav::Trifocal4ptOptions options;
   options.recovery = recovery;
+  options.epipoles = epipoles;
   options.resolve_translations = resolve_translations;
   options.polish_iterations = polish_iterations;
   return [options](const Rays& x1, const Rays& x2, const Rays& x3, const Eigen::Vector3d& g1,
@@ -86,7 +90,8 @@ const std::map<std::string, GravitySolver>& Solvers() {
        }},
       {"4pt", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 1)},
       {"4pt-unpolished", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 0)},
-      {"4pt-paper", Trifocal4pt(Trifocal4ptRecovery::kEnforced, false, 0)},
+      {"4pt-paper", Trifocal4pt(Trifocal4ptRecovery::kEnforced, false, 0,
+                                trigrav::Trifocal4ptEpipoles::kTensorNullVectors)},
       {"4pt-closed-form", Trifocal4pt(Trifocal4ptRecovery::kPaperClosedForm, false, 0)},
       {"4pt-least-squares", Trifocal4pt(Trifocal4ptRecovery::kLeastSquares, false, 0)},
   };

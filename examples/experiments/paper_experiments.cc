@@ -139,12 +139,13 @@ bool Decoupled3(const Input& in, Workspace* w, ThreeViewPose* pose) {
   return First(w->three_view, pose);
 }
 
-// 4pt-paper, the paper's own 4-point variant (III-D): constraint enforcement, translations read
-// from the enforced tensor (no re-solve), no polish.
+// 4pt-paper, the paper's own 4-point variant (III-D): constraint enforcement with the tensor's
+// epipoles, translations read from the enforced tensor (no re-solve), no polish.
 bool Paper4(const Input& in, Workspace* w, ThreeViewPose* pose) {
   const auto& x = in.rays[4];
   trigrav::Trifocal4ptOptions options;
   options.recovery = trigrav::Trifocal4ptRecovery::kEnforced;
+  options.epipoles = trigrav::Trifocal4ptEpipoles::kTensorNullVectors;
   options.resolve_translations = false;
   options.polish_iterations = 0;
   trigrav::SolveTrifocal4pt(x[0], x[1], x[2], in.gravity[0], in.gravity[1], in.gravity[2], options,

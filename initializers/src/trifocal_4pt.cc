@@ -414,10 +414,11 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1,
   Eigen::Vector3d epipole2, epipole3;
   switch (options.recovery) {
     case Trifocal4ptRecovery::kEnforced:
-      // Epipoles (derivations.md section 4.3 step 1): the least-squares read of q for the minimal
-      // system, the tensor's null vectors for more triplets.
-      ok = (Rows == 16 ? EpipolesFromQ(q, &epipole2, &epipole3)
-                       : internal::EpipolesFromTensor(TensorFromQ(q), &epipole2, &epipole3)) &&
+      // Epipoles (derivations.md section 4.3 step 1): by default the least-squares read of q for
+      // the minimal system, the tensor's null vectors for more triplets.
+      ok = (Rows == 16 && options.epipoles == Trifocal4ptEpipoles::kLeastSquaresReadIfMinimal
+                ? EpipolesFromQ(q, &epipole2, &epipole3)
+                : internal::EpipolesFromTensor(TensorFromQ(q), &epipole2, &epipole3)) &&
            EnforceConstraints(M, epipole2, epipole3, &estimate);
       break;
     case Trifocal4ptRecovery::kLeastSquares:
@@ -465,6 +466,9 @@ void Trifocal4ptOptions::Check() const {
               recovery == Trifocal4ptRecovery::kLeastSquares ||
               recovery == Trifocal4ptRecovery::kPaperClosedForm,
           "unknown recovery");
+  require(epipoles == Trifocal4ptEpipoles::kLeastSquaresReadIfMinimal ||
+              epipoles == Trifocal4ptEpipoles::kTensorNullVectors,
+          "unknown epipoles");
   require(epipole_iterations >= 0, "epipole_iterations must be >= 0");
   require(polish_iterations >= 0, "polish_iterations must be >= 0");
 }

@@ -788,6 +788,8 @@ void AddOptionCases(std::vector<Case>* cases) {
       cases, group, kTrifocal4ptOptions, "Trifocal4ptOptions: ",
       {{"Trifocal4ptOptions::recovery out of range",
         [](TO* o) { o->recovery = static_cast<Trifocal4ptRecovery>(7); }},
+       {"Trifocal4ptOptions::epipoles out of range",
+        [](TO* o) { o->epipoles = static_cast<Trifocal4ptEpipoles>(7); }},
        {"Trifocal4ptOptions::epipole_iterations = -1", [](TO* o) { o->epipole_iterations = -1; }},
        {"Trifocal4ptOptions::polish_iterations = -1", [](TO* o) { o->polish_iterations = -1; }}},
       &Input::trifocal4pt);

@@ -77,18 +77,23 @@ TEST(Trifocal4pt, PaperVariantsExactNoiseFree) {
        {Trifocal4ptRecovery::kEnforced, Trifocal4ptRecovery::kLeastSquares,
         Trifocal4ptRecovery::kPaperClosedForm}) {
     for (const bool resolve : {false, true}) {
-      Trifocal4ptOptions options;
-      options.recovery = recovery;
-      options.resolve_translations = resolve;
-      options.polish_iterations =
-          0;  // each variant alone, as the paper and derivations.md section 4 define it
-      for (int trial = 0; trial < 200; ++trial) {
-        const SyntheticScene scene = GenerateSyntheticScene(SyntheticSceneOptions(), &rng);
-        std::vector<ThreeViewPose> solutions;
-        const int count = SolveScene(scene, options, &solutions);
-        ASSERT_EQ(count, 1);
-        EXPECT_LT(ComputeThreeViewPoseErrors(scene.ground_truth, solutions[0]).MaxAngleDeg(), 1e-7)
-            << static_cast<int>(recovery);
+      for (const Trifocal4ptEpipoles epipoles : {Trifocal4ptEpipoles::kLeastSquaresReadIfMinimal,
+                                                 Trifocal4ptEpipoles::kTensorNullVectors}) {
+        Trifocal4ptOptions options;
+        options.recovery = recovery;
+        options.epipoles = epipoles;
+        options.resolve_translations = resolve;
+        options.polish_iterations =
+            0;  // each variant alone, as the paper and derivations.md section 4 define it
+        for (int trial = 0; trial < 200; ++trial) {
+          const SyntheticScene scene = GenerateSyntheticScene(SyntheticSceneOptions(), &rng);
+          std::vector<ThreeViewPose> solutions;
+          const int count = SolveScene(scene, options, &solutions);
+          ASSERT_EQ(count, 1);
+          EXPECT_LT(ComputeThreeViewPoseErrors(scene.ground_truth, solutions[0]).MaxAngleDeg(),
+                    1e-7)
+              << static_cast<int>(recovery) << " " << static_cast<int>(epipoles);
+        }
       }
     }
   }

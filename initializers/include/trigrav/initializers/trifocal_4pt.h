@@ -48,8 +48,17 @@ enum class Trifocal4ptRecovery {
                      // motion)
 };
 
+// Where constraint enforcement (kEnforced) takes the epipoles from (derivations.md section 4.3
+// step 1).
+enum class Trifocal4ptEpipoles {
+  kLeastSquaresReadIfMinimal,  // the least-squares read of q for 4 triplets (more accurate and
+                               // cheaper there), the null vectors of T_i for more: the default
+  kTensorNullVectors,          // the null vectors of T_i (eq. f1) at any size: the paper's
+};
+
 struct Trifocal4ptOptions {
   Trifocal4ptRecovery recovery = Trifocal4ptRecovery::kEnforced;
+  Trifocal4ptEpipoles epipoles = Trifocal4ptEpipoles::kLeastSquaresReadIfMinimal;
   // Re-solve (c_2, c_3) from all triplets with the yaws fixed (derivations.md section 4.5); cuts
   // the translation error by about a third. The paper does not do this.
   bool resolve_translations = true;
@@ -63,8 +72,8 @@ struct Trifocal4ptOptions {
   // exactly.
   int polish_iterations = 1;
 
-  // Throws std::invalid_argument naming the first bad field: recovery not one of the enumerators,
-  // negative iteration counts. The solvers call it.
+  // Throws std::invalid_argument naming the first bad field: recovery or epipoles not one of the
+  // enumerators, negative iteration counts. The solvers call it.
   void Check() const;
 };
 

@@ -1,6 +1,7 @@
 #include "trigrav/initializers/trifocal_4pt.h"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -14,7 +15,6 @@
 #include "null_space.h"
 #include "triangular_factor.h"
 #include "trifocal_common.h"
-#include "trigrav/initializers/gravity.h"
 
 namespace trigrav {
 namespace {
@@ -359,7 +359,7 @@ void PolishYawsAndCenters(std::size_t count,
   }
   if (!step.allFinite()) return;
   // theta_k + delta applied as the direction (cos, sin) + delta (-sin, cos), i.e. theta_k +
-  // atan(delta): equal to third order, so the step keeps its quadratic convergence, and no
+  // atan(delta), which differs by O(delta^3): the step keeps its quadratic convergence, with no
   // trigonometric call.
   const auto turn = [](const Yaw& yaw, double delta) {
     return Yaw::FromDirection(yaw.c - delta * yaw.s, yaw.s + delta * yaw.c);

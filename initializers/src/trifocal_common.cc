@@ -6,7 +6,6 @@
 #include <cstddef>
 
 #include "null_space.h"
-#include "trigrav/initializers/gravity.h"
 #include "two_view_geometry.h"
 
 namespace trigrav {

@@ -21,16 +21,15 @@ namespace internal {
 struct Yaw {
   double c = 1.0, s = 0.0;
   // The yaw of the direction (c, s), any positive length: atan2(s, c) without the call. (0, 0)
-  // gives theta = 0, as atan2 does; a non-finite input gives a non-finite yaw.
+  // (either sign) gives theta = 0; a NaN or infinite input gives a non-finite yaw.
   static Yaw FromDirection(double c, double s) {
-    const double scale = std::max(std::abs(c), std::abs(s));
-    if (scale == 0.0) return {};
+    if (c == 0.0 && s == 0.0) return {};
+    const double scale = std::max(std::abs(c), std::abs(s));  // NaN: 0 or NaN, both propagate
     c /= scale;
     s /= scale;
     const double inverse_norm = 1.0 / std::sqrt(c * c + s * s);
     return {c * inverse_norm, s * inverse_norm};
   }
-  double Angle() const { return std::atan2(s, c); }
   bool IsFinite() const { return std::isfinite(c) && std::isfinite(s); }
   Eigen::Matrix3d Matrix() const {
     Eigen::Matrix3d R;

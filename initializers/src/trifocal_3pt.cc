@@ -80,11 +80,16 @@ void SortByKey(int count, Key&& key, std::array<T, N>* items) {
 
 using internal::Yaw;
 
-// theta = theta_0 + 2 atan(t), with cos/sin from the half-angle formulas.
-Yaw YawFromCayley(double t, const Offset& offset) {
-  const double denominator = 1.0 + t * t;
-  const double c_phi = (1.0 - t * t) / denominator, s_phi = 2.0 * t / denominator;
+// w (cos theta, sin theta) for theta = theta_0 + 2 atan(t), w = 1 + t^2: the half-angle formulas
+// without their common denominator w.
+Eigen::Vector2d ScaledCayleyDirection(double t, const Offset& offset) {
+  const double c_phi = 1.0 - t * t, s_phi = 2.0 * t;
   return {c_phi * offset.c - s_phi * offset.s, s_phi * offset.c + c_phi * offset.s};
+}
+
+Yaw YawFromCayley(double t, const Offset& offset) {
+  const Eigen::Vector2d direction = ScaledCayleyDirection(t, offset) / (1.0 + t * t);
+  return {direction.x(), direction.y()};
 }
 
 // R_y(theta) x = cos(theta) A + sin(theta) B + C with A = (x, 0, z), B = (z, 0, -x), C = (0, y, 0)
@@ -243,10 +248,9 @@ int UprightPairRoots(const MinimalRays& xk,
   int count = 0;
   for (int i = 0; i < num_t; ++i) {
     // Everything below is homogeneous in w = 1 + t^2 > 0, so the yaw is carried unnormalised,
-    // (c, sn) = w (cos theta, sin theta) (YawFromCayley times w), and m_n = w m_n(theta).
-    const double t_squared = t[i] * t[i];
-    const double w = 1.0 + t_squared, c_phi = 1.0 - t_squared, s_phi = 2.0 * t[i];
-    const double c = c_phi * offset.c - s_phi * offset.s, sn = s_phi * offset.c + c_phi * offset.s;
+    // (c, sn) = w (cos theta, sin theta), and m_n = w m_n(theta).
+    const Eigen::Vector2d direction = ScaledCayleyDirection(t[i], offset);
+    const double w = 1.0 + t[i] * t[i], c = direction.x(), sn = direction.y();
     // m_n by components (S_n.y = 0), in plain scalars: Eigen's 3-vectors cost shuffles here.
     std::array<double, 3> mx, my, mz;
     for (std::size_t n = 0; n < kNumTriplets; ++n) {
@@ -521,10 +525,12 @@ int SolveSexticAligned(const Rays& x1,
     // (cos theta_3, sin theta_3, 1) ~ row_12 x row_13 at this t.
     Eigen::Vector3d direction = cross[4];
     for (int d = 3; d >= 0; --d) direction = direction * t[i] + cross[d];
-    const double horizontal = std::hypot(direction.x(), direction.y());
-    if (!(horizontal > 0.0) || !(direction.z() != 0.0) || !direction.allFinite()) continue;
+    if (!direction.allFinite() || !(direction.z() != 0.0) ||
+        (direction.x() == 0.0 && direction.y() == 0.0)) {
+      continue;
+    }
     const double sign = direction.z() > 0.0 ? 1.0 : -1.0;
-    const Yaw yaw3 = {sign * direction.x() / horizontal, sign * direction.y() / horizontal};
+    const Yaw yaw3 = Yaw::FromDirection(sign * direction.x(), sign * direction.y());
 
     // Centres: null vector of the 12x6 translation system with the yaws fixed (derivations.md
     // section 3.4).

@@ -102,11 +102,17 @@ struct AlignedEstimate {
   Eigen::Vector3d center2 = Eigen::Vector3d::Zero(), center3 = Eigen::Vector3d::Zero();
 };
 
-// Centres from q given the yaws: R2 c2 = (Q9, ty2, Q13), R3 c3 = (-Q10, ty3, -Q12) (derivations.md
-// section 3).
+// R2 c2 = (Q9, ty2, Q13) and R3 c3 = (-Q10, ty3, -Q12) (derivations.md section 3): the centres in
+// their cameras' aligned frames, which are also the epipoles e', e'' up to scale.
+std::array<Eigen::Vector3d, 2> RotatedCentersFromQ(const Vector17d& q, double ty2, double ty3) {
+  return {Eigen::Vector3d(q[8], ty2, q[12]), Eigen::Vector3d(-q[9], ty3, -q[11])};
+}
+
+// Centres from q given the yaws.
 void CentersFromQ(const Vector17d& q, double ty2, double ty3, AlignedEstimate* estimate) {
-  estimate->center2 = estimate->yaw2.Matrix().transpose() * Eigen::Vector3d(q[8], ty2, q[12]);
-  estimate->center3 = estimate->yaw3.Matrix().transpose() * Eigen::Vector3d(-q[9], ty3, -q[11]);
+  const std::array<Eigen::Vector3d, 2> rotated = RotatedCentersFromQ(q, ty2, ty3);
+  estimate->center2 = estimate->yaw2.Matrix().transpose() * rotated[0];
+  estimate->center3 = estimate->yaw3.Matrix().transpose() * rotated[1];
 }
 
 // Constraint enforcement for given epipoles (eqs f2-f7) and the pose read from a (derivations.md
@@ -206,15 +212,16 @@ bool EstimateLeastSquares(const Vector17d& q, AlignedEstimate* estimate) {
   return true;
 }
 
-// Epipoles e' ~ R2 c2 = (Q9, ty2, Q13) and e'' ~ R3 c3 = (-Q10, ty3, -Q12) of the least-squares
-// read; where that is undefined (a horizontal epipole vanishes), the tensor's own epipoles (eq.
-// f1). Derivations.md section 4.3 step 1.
+// Epipoles e' ~ R2 c2 and e'' ~ R3 c3 of the least-squares read; where that is undefined (a
+// horizontal epipole vanishes), the tensor's own epipoles (eq. f1). Derivations.md section 4.3
+// step 1.
 bool EpipolesFromQ(const Vector17d& q, Eigen::Vector3d* epipole2, Eigen::Vector3d* epipole3) {
   LeastSquaresRead read;
   if (!ReadLeastSquares(q, &read))
     return internal::EpipolesFromTensor(TensorFromQ(q), epipole2, epipole3);
-  *epipole2 = Eigen::Vector3d(q[8], read.ty2, q[12]).normalized();
-  *epipole3 = Eigen::Vector3d(-q[9], read.ty3, -q[11]).normalized();
+  const std::array<Eigen::Vector3d, 2> rotated = RotatedCentersFromQ(q, read.ty2, read.ty3);
+  *epipole2 = rotated[0].normalized();
+  *epipole3 = rotated[1].normalized();
   return true;
 }
 

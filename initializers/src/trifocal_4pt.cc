@@ -266,105 +266,101 @@ void ResolveCenters(std::size_t count, const FrameFunction& frame, AlignedEstima
   estimate->center3 = (sign < 0.0 ? -1.0 : 1.0) * centers.tail<3>();
 }
 
-// One Gauss-Newton step on the incidence residuals r = F(theta2, theta3) (c2; c3) of all triplets
-// (the rows of TranslationRows), jointly over the yaws and the centres, with |(c2; c3)| held fixed
-// to first order (derivations.md section 4.5). Noise-free it converges quadratically to the exact
-// pose, removing the rounding tail of the linear steps (whose yaw error the translation solve
-// amplifies); with noise it moves the estimate to the nearest minimum of the algebraic residual.
-// Leaves the estimate unchanged if the step is not finite.
+// One Gauss-Newton step on the incidence residuals of all triplets (the rows of TranslationRows),
+// jointly over the yaws and the rotated centres rho_k = R_k c_k, with |(rho2; rho3)| held fixed to
+// first order (derivations.md section 4.5). In rho the rows of a triplet are
+// r_ab = zr_b (left_a . rho2) + pu_a (right_b . rho3) with pu_a = left_a . R2 x1 and
+// zr_b = -right_b . R3 x1: the yaws enter through R2 x1 and R3 x1 only. Writes the cost |r|^2 at
+// the estimate it started from (|rho| = 1). Returns true if the step was at rounding level
+// (converged); leaves the estimate unchanged if the step is not finite (and returns true).
 template <typename FrameFunction>
-void PolishYawsAndCenters(std::size_t count,
+bool PolishYawsAndCenters(std::size_t count,
                           const FrameFunction& frame,
-                          AlignedEstimate* estimate) {
-  const Eigen::Matrix3d R2 = estimate->yaw2.Matrix();
-  const Eigen::Matrix3d R3 = estimate->yaw3.Matrix();
-  Vector6d centers;
-  centers << estimate->center2, estimate->center3;
-  const double norm = centers.norm();
-  if (!(norm > 0.0)) return;
-  centers /= norm;
-  // R_y^T dR_y/dtheta = K with K v = (v_z, 0, -v_x): the yaw derivatives of the terms of
-  // TranslationTerms are the same terms taken at K v.
+                          AlignedEstimate* estimate,
+                          double* cost_at_start) {
+  Vector6d rho;
+  rho << estimate->yaw2.Matrix() * estimate->center2, estimate->yaw3.Matrix() * estimate->center3;
+  const double norm = rho.norm();
+  if (!(norm > 0.0)) return true;
+  rho /= norm;
+  const Eigen::Vector3d rho2 = rho.head<3>(), rho3 = rho.tail<3>();
+  // R_y x = (c x_x + s x_z, x_y, -s x_x + c x_z); dR_y/dtheta x = K R_y x with K v = (v_z, 0,
+  // -v_x).
+  const auto rotate = [](const Yaw& yaw, const Eigen::Vector3d& x) {
+    return Eigen::Vector3d(yaw.c * x.x() + yaw.s * x.z(), x.y(), yaw.c * x.z() - yaw.s * x.x());
+  };
   const auto K = [](const Eigen::Vector3d& v) { return Eigen::Vector3d(v.z(), 0.0, -v.x()); };
-  const Eigen::Vector3d c2 = centers.head<3>(), Kc2 = K(c2);
-  const Eigen::Vector3d c3 = centers.tail<3>(), Kc3 = K(c3);
-  // Normal equations of the 4N x 8 Jacobian [dr/dtheta2, dr/dtheta3, F], accumulated per triplet
-  // in factored form: row (a, b) of F is [zr_b l_a^T, pu_a m_b^T] (l_a = left_R2_a, m_b =
-  // right_R3_b), so its 6 x 6 block is [(sum_b zr_b^2) sum_a l_a l_a^T, (sum_a pu_a l_a)(sum_b zr_b
-  // m_b)^T; ., (sum_a pu_a^2) sum_b m_b m_b^T] and a column v of the other entries gives
-  // F^T v = (sum_a (sum_b v_ab zr_b) l_a; sum_b (sum_a v_ab pu_a) m_b).
+  // Normal equations of the 4N x 8 Jacobian [dr/dtheta2, dr/dtheta3, dr/drho], accumulated per
+  // triplet in factored form: the rho block of row (a, b) is [zr_b left_a^T, pu_a right_b^T], so
+  // the triplet's 6 x 6 block is [(sum_b zr_b^2) S2, (sum_a pu_a left_a)(sum_b zr_b right_b)^T; .,
+  // (sum_a pu_a^2) S3] with S2 = sum_a left_a left_a^T = |x2|^2 I - x2 x2^T (left_a = p_a x x2 for
+  // an orthonormal basis (p_a) of x2^perp; likewise S3), and a column v of the other entries gives
+  // (sum_a (sum_b v_ab zr_b) left_a; sum_b (sum_a v_ab pu_a) right_b).
   Eigen::Matrix<double, 8, 8> JtJ = Eigen::Matrix<double, 8, 8>::Zero();
   Eigen::Matrix<double, 8, 1> Jtr = Eigen::Matrix<double, 8, 1>::Zero();
   Eigen::Matrix3d ll = Eigen::Matrix3d::Zero(), mm = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d lm = Eigen::Matrix3d::Zero();
+  double cost = 0.0;
   for (std::size_t n = 0; n < count; ++n) {
     const internal::TripletFrame& f = frame(n);
-    const internal::TranslationTerms t = internal::MakeTranslationTerms(f, R2, R3);
-    // Row (a, b) of r: zr_b (l_a . c2) + pu_a (m_b . c3); pu_a depends on theta2 and zr_b on
-    // theta3, with derivatives l_a . K x1 and -m_b . K x1.
-    const Eigen::Vector3d Kx1 = K(f.x1);
-    double l_c2[2], l_Kc2[2], dpu[2], r_c3[2], r_Kc3[2], dzr[2];
+    const Eigen::Vector3d u = rotate(estimate->yaw2, f.x1), Ku = K(u);
+    const Eigen::Vector3d z = rotate(estimate->yaw3, f.x1), Kz = K(z);
+    double alpha[2], pu[2], dpu[2], beta[2], zr[2], dzr[2];
     for (int i = 0; i < 2; ++i) {
-      l_c2[i] = t.left_R2[i].dot(c2);
-      l_Kc2[i] = t.left_R2[i].dot(Kc2);
-      dpu[i] = t.left_R2[i].dot(Kx1);
-      r_c3[i] = t.right_R3[i].dot(c3);
-      r_Kc3[i] = t.right_R3[i].dot(Kc3);
-      dzr[i] = -t.right_R3[i].dot(Kx1);
+      alpha[i] = f.left[i].dot(rho2);
+      pu[i] = f.left[i].dot(u);
+      dpu[i] = f.left[i].dot(Ku);
+      beta[i] = f.right[i].dot(rho3);
+      zr[i] = -f.right[i].dot(z);
+      dzr[i] = -f.right[i].dot(Kz);
     }
     // The yaw columns and the residual, entry (a, b) at index 2 a + b.
     Eigen::Matrix<double, 4, 3> v;
     for (int a = 0; a < 2; ++a) {
       for (int b = 0; b < 2; ++b) {
-        v(2 * a + b, 0) = t.zr[b] * l_Kc2[a] + dpu[a] * r_c3[b];
-        v(2 * a + b, 1) = dzr[b] * l_c2[a] + t.pu[a] * r_Kc3[b];
-        v(2 * a + b, 2) = t.zr[b] * l_c2[a] + t.pu[a] * r_c3[b];
+        v(2 * a + b, 0) = dpu[a] * beta[b];
+        v(2 * a + b, 1) = dzr[b] * alpha[a];
+        v(2 * a + b, 2) = zr[b] * alpha[a] + pu[a] * beta[b];
       }
     }
     const Eigen::Matrix3d vtv = v.transpose() * v;
     JtJ.topLeftCorner<2, 2>() += vtv.topLeftCorner<2, 2>();
     Jtr.head<2>() += vtv.block<2, 1>(0, 2);
-    // F^T v for the three columns at once.
+    cost += vtv(2, 2);
     Eigen::Matrix<double, 6, 3> Ftv;
     for (int j = 0; j < 3; ++j) {
-      const double za0 = v(0, j) * t.zr[0] + v(1, j) * t.zr[1];
-      const double za1 = v(2, j) * t.zr[0] + v(3, j) * t.zr[1];
-      const double pb0 = v(0, j) * t.pu[0] + v(2, j) * t.pu[1];
-      const double pb1 = v(1, j) * t.pu[0] + v(3, j) * t.pu[1];
-      Ftv.block<3, 1>(0, j) = za0 * t.left_R2[0] + za1 * t.left_R2[1];
-      Ftv.block<3, 1>(3, j) = pb0 * t.right_R3[0] + pb1 * t.right_R3[1];
+      const double za0 = v(0, j) * zr[0] + v(1, j) * zr[1];
+      const double za1 = v(2, j) * zr[0] + v(3, j) * zr[1];
+      const double pb0 = v(0, j) * pu[0] + v(2, j) * pu[1];
+      const double pb1 = v(1, j) * pu[0] + v(3, j) * pu[1];
+      Ftv.block<3, 1>(0, j) = za0 * f.left[0] + za1 * f.left[1];
+      Ftv.block<3, 1>(3, j) = pb0 * f.right[0] + pb1 * f.right[1];
     }
     JtJ.block<6, 2>(2, 0) += Ftv.leftCols<2>();
     Jtr.tail<6>() += Ftv.col(2);
-    const double zz = t.zr[0] * t.zr[0] + t.zr[1] * t.zr[1];
-    const double pp = t.pu[0] * t.pu[0] + t.pu[1] * t.pu[1];
-    ll.noalias() +=
-        zz * (t.left_R2[0] * t.left_R2[0].transpose() + t.left_R2[1] * t.left_R2[1].transpose());
-    mm.noalias() += pp * (t.right_R3[0] * t.right_R3[0].transpose() +
-                          t.right_R3[1] * t.right_R3[1].transpose());
-    lm.noalias() += (t.pu[0] * t.left_R2[0] + t.pu[1] * t.left_R2[1]) *
-                    (t.zr[0] * t.right_R3[0] + t.zr[1] * t.right_R3[1]).transpose();
+    const double zz = zr[0] * zr[0] + zr[1] * zr[1];
+    const double pp = pu[0] * pu[0] + pu[1] * pu[1];
+    ll.diagonal().array() += zz * f.x2_squared_norm;
+    ll.noalias() -= (zz * f.x2) * f.x2.transpose();
+    mm.diagonal().array() += pp * f.x3_squared_norm;
+    mm.noalias() -= (pp * f.x3) * f.x3.transpose();
+    lm.noalias() += (pu[0] * f.left[0] + pu[1] * f.left[1]) *
+                    (zr[0] * f.right[0] + zr[1] * f.right[1]).transpose();
   }
   JtJ.block<2, 6>(0, 2) = JtJ.block<6, 2>(2, 0).transpose();
   JtJ.block<3, 3>(2, 2) = ll;
   JtJ.block<3, 3>(2, 5) = lm;
   JtJ.block<3, 3>(5, 2) = lm.transpose();
   JtJ.block<3, 3>(5, 5) = mm;
-  // Gauge: the step keeps c . delta_c = 0, weighted like an average row.
+  // Gauge: the step keeps rho . delta_rho = 0, weighted like an average row.
   Eigen::Matrix<double, 8, 1> gauge = Eigen::Matrix<double, 8, 1>::Zero();
-  gauge.tail<6>() = centers;
+  gauge.tail<6>() = rho;
   JtJ.noalias() += (JtJ.trace() / 8.0) * gauge * gauge.transpose();
   // With the gauge row JtJ is positive definite unless the data are degenerate: Cholesky (several
   // times cheaper than pivoted LDLT at 8x8), LDLT only where Cholesky fails.
-  Eigen::Matrix<double, 8, 8> cholesky;
   Eigen::Matrix<double, 8, 1> step = -Jtr;
-  if (internal::UpperCholesky(JtJ, &cholesky)) {
-    internal::SolveUpperTransposedInPlace(cholesky, &step);
-    internal::SolveUpperInPlace(cholesky, &step);
-  } else {
-    step = -JtJ.ldlt().solve(Jtr);
-  }
-  if (!step.allFinite()) return;
+  if (!internal::SolveSymmetricPositiveDefiniteInPlace(JtJ, &step)) step = -JtJ.ldlt().solve(Jtr);
+  if (!step.allFinite()) return true;
   // theta_k + delta applied as the direction (cos, sin) + delta (-sin, cos), i.e. theta_k +
   // atan(delta), which differs by O(delta^3): the step keeps its quadratic convergence, with no
   // trigonometric call.
@@ -373,9 +369,52 @@ void PolishYawsAndCenters(std::size_t count,
   };
   estimate->yaw2 = turn(estimate->yaw2, step[0]);
   estimate->yaw3 = turn(estimate->yaw3, step[1]);
-  centers += step.tail<6>();
-  estimate->center2 = norm * centers.head<3>();
-  estimate->center3 = norm * centers.tail<3>();
+  rho += step.tail<6>();
+  estimate->center2 = norm * (estimate->yaw2.Matrix().transpose() * rho.head<3>());
+  estimate->center3 = norm * (estimate->yaw3.Matrix().transpose() * rho.tail<3>());
+  *cost_at_start = cost;
+  // Quadratic convergence: after a step below 1e-8 the next one would be at rounding level.
+  return step.squaredNorm() < 1e-16;
+}
+
+// Up to max_steps polish steps, ending early once a step is at rounding level (noise-free data:
+// one step) or the step before the last changed the cost by less than kPolishCostTolerance of it
+// (with noise the steps converge linearly; derivations.md section 4.5).
+constexpr double kPolishCostTolerance = 1e-2;
+
+template <typename FrameFunction>
+void Polish(std::size_t count,
+            const FrameFunction& frame,
+            int max_steps,
+            AlignedEstimate* estimate) {
+  double previous_cost = -1.0;
+  for (int step = 0; step < max_steps; ++step) {
+    double cost = 0.0;
+    if (PolishYawsAndCenters(count, frame, estimate, &cost)) return;
+    if (previous_cost >= 0.0 &&
+        std::abs(previous_cost - cost) <= kPolishCostTolerance * previous_cost)
+      return;
+    previous_cost = cost;
+  }
+}
+
+// The steps SolveAligned runs for the options and the size of the system (derivations.md section
+// 4.7).
+struct Pipeline {
+  Trifocal4ptRecovery recovery;
+  bool resolve_translations;
+  int max_polish_steps;
+};
+
+Pipeline PipelineFor(const Trifocal4ptOptions& options, bool minimal) {
+  if (options.recovery != Trifocal4ptRecovery::kLeastSquaresIfMinimal) {
+    return {options.recovery, options.resolve_translations, options.polish_iterations};
+  }
+  // 4 triplets: the least-squares read, no re-solve (at the read's yaws it moves the centres away
+  // from the polish's optimum); more: the enforcement, the re-solve and at most one polish step.
+  if (minimal) return {Trifocal4ptRecovery::kLeastSquares, false, options.polish_iterations};
+  return {Trifocal4ptRecovery::kEnforced, options.resolve_translations,
+          std::min(options.polish_iterations, 1)};
 }
 
 // Rows = 16 for the minimal case (fixed size, no heap allocation) or Eigen::Dynamic.
@@ -416,10 +455,19 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1,
   }
   if (q.isZero()) return 0;
 
+  Pipeline pipeline = PipelineFor(options, Rows == 16);
   AlignedEstimate estimate;
   bool ok = false;
   Eigen::Vector3d epipole2, epipole3;
-  switch (options.recovery) {
+  switch (pipeline.recovery) {
+    case Trifocal4ptRecovery::kLeastSquares:
+      ok = EstimateLeastSquares(q, &estimate);
+      if (ok || options.recovery != Trifocal4ptRecovery::kLeastSquaresIfMinimal) break;
+      // The read is undefined (a horizontal epipole vanishes): kEnforced, whose epipoles then
+      // come from the tensor, and the re-solve.
+      pipeline.recovery = Trifocal4ptRecovery::kEnforced;
+      pipeline.resolve_translations = options.resolve_translations;
+      [[fallthrough]];
     case Trifocal4ptRecovery::kEnforced:
       // Epipoles (derivations.md section 4.3 step 1): by default the least-squares read of q for
       // the minimal system, the tensor's null vectors for more triplets.
@@ -428,16 +476,15 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1,
                 : internal::EpipolesFromTensor(TensorFromQ(q), &epipole2, &epipole3)) &&
            EnforceConstraints(M, epipole2, epipole3, &estimate);
       break;
-    case Trifocal4ptRecovery::kLeastSquares:
-      ok = EstimateLeastSquares(q, &estimate);
-      break;
     case Trifocal4ptRecovery::kPaperClosedForm:
       ok = EstimatePaperClosedForm(q, &estimate);
       break;
+    case Trifocal4ptRecovery::kLeastSquaresIfMinimal:  // resolved by PipelineFor
+      break;
   }
   if (!ok || !estimate.yaw2.IsFinite() || !estimate.yaw3.IsFinite()) return 0;
-  if (options.resolve_translations) ResolveCenters<Rows>(x1.size(), frame, &estimate);
-  if (options.recovery == Trifocal4ptRecovery::kEnforced) {
+  if (pipeline.resolve_translations) ResolveCenters<Rows>(x1.size(), frame, &estimate);
+  if (pipeline.recovery == Trifocal4ptRecovery::kEnforced) {
     // Epipoles of the current pose, e' ~ R2 c2 and e'' ~ R3 c3, then enforcement and centres again.
     for (int iteration = 0; iteration < options.epipole_iterations; ++iteration) {
       epipole2 = (estimate.yaw2.Matrix() * estimate.center2).normalized();
@@ -446,13 +493,10 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1,
           !EnforceConstraints(M, epipole2, epipole3, &estimate)) {
         return 0;
       }
-      if (options.resolve_translations) ResolveCenters<Rows>(x1.size(), frame, &estimate);
+      if (pipeline.resolve_translations) ResolveCenters<Rows>(x1.size(), frame, &estimate);
     }
   }
-
-  for (int iteration = 0; iteration < options.polish_iterations; ++iteration) {
-    PolishYawsAndCenters(x1.size(), frame, &estimate);
-  }
+  Polish(x1.size(), frame, pipeline.max_polish_steps, &estimate);
 
   ThreeViewPose pose;
   if (!internal::OrientScaleAndMakePose(x1, x2, x3, estimate.yaw2, estimate.center2, estimate.yaw3,
@@ -469,7 +513,8 @@ void Trifocal4ptOptions::Check() const {
   auto require = [](bool ok, const char* what) {
     if (!ok) throw std::invalid_argument(std::string("trigrav: Trifocal4ptOptions: ") + what);
   };
-  require(recovery == Trifocal4ptRecovery::kEnforced ||
+  require(recovery == Trifocal4ptRecovery::kLeastSquaresIfMinimal ||
+              recovery == Trifocal4ptRecovery::kEnforced ||
               recovery == Trifocal4ptRecovery::kLeastSquares ||
               recovery == Trifocal4ptRecovery::kPaperClosedForm,
           "unknown recovery");

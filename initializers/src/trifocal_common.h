@@ -51,6 +51,8 @@ struct TripletFrame {
   Eigen::Vector3d x1;
   Eigen::Vector3d p[2], r[2];
   Eigen::Vector3d left[2], right[2];  // p_a x x2, r_b x x3
+  Eigen::Vector3d x2, x3;
+  double x2_squared_norm = 0.0, x3_squared_norm = 0.0;
 };
 
 inline TripletFrame MakeTripletFrame(const Eigen::Vector3d& x1,
@@ -58,6 +60,10 @@ inline TripletFrame MakeTripletFrame(const Eigen::Vector3d& x1,
                                      const Eigen::Vector3d& x3) {
   TripletFrame frame;
   frame.x1 = x1;
+  frame.x2 = x2;
+  frame.x3 = x3;
+  frame.x2_squared_norm = x2.squaredNorm();
+  frame.x3_squared_norm = x3.squaredNorm();
   PerpendicularBasis(x2, &frame.p[0], &frame.p[1]);
   PerpendicularBasis(x3, &frame.r[0], &frame.r[1]);
   for (int i = 0; i < 2; ++i) {

@@ -40,12 +40,12 @@ namespace trigrav {
 // How the poses are read from the tensor. The paper's own variants stay selectable because the
 // experiments compare them.
 enum class Trifocal4ptRecovery {
-  kEnforced,  // constraint enforcement (f1-f7), poses read as in derivations.md section 4.3: the
-              // default
+  kEnforced,         // constraint enforcement (f1-f7), poses read as in derivations.md section 4.3
   kLeastSquares,     // no enforcement; yaws from all 8 relations of eq. c5 by least squares
                      // (derivations.md section 4.2)
   kPaperClosedForm,  // no enforcement; the paper's eqs c8-c11 (singular for straight or sideways
                      // motion)
+  kLeastSquaresIfMinimal,  // the default: kLeastSquares for 4 triplets, kEnforced for more
 };
 
 // Where constraint enforcement (kEnforced) takes the epipoles from (derivations.md section 4.3
@@ -57,7 +57,7 @@ enum class Trifocal4ptEpipoles {
 };
 
 struct Trifocal4ptOptions {
-  Trifocal4ptRecovery recovery = Trifocal4ptRecovery::kEnforced;
+  Trifocal4ptRecovery recovery = Trifocal4ptRecovery::kLeastSquaresIfMinimal;
   Trifocal4ptEpipoles epipoles = Trifocal4ptEpipoles::kLeastSquaresReadIfMinimal;
   // Re-solve (c_2, c_3) from all triplets with the yaws fixed (derivations.md section 4.5); cuts
   // the translation error by about a third. The paper does not do this.
@@ -71,7 +71,7 @@ struct Trifocal4ptOptions {
   // Gauss-Newton steps on the incidence residuals over yaws and centres jointly (step 6 above;
   // about 0.4 microseconds each on 4 triplets). 0 leaves the polish out of the pipeline of
   // derivations.md section 4.7.
-  int polish_iterations = 1;
+  int polish_iterations = 8;
 
   // Throws std::invalid_argument naming the first bad field: recovery or epipoles not one of the
   // enumerators, negative iteration counts. The solvers call it.

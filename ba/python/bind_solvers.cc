@@ -61,9 +61,12 @@ constexpr const char* kGravityDoc =
 void BindTrifocal4ptOptions(py::module_& m) {
   py::enum_<Trifocal4ptRecovery>(m, "Trifocal4ptRecovery",
                                  "How the 4-point solver reads the poses from its tensor.")
-      .value("ENFORCED", Trifocal4ptRecovery::kEnforced, "constraint enforcement (the default)")
-      .value("LEAST_SQUARES", Trifocal4ptRecovery::kLeastSquares)
-      .value("PAPER_CLOSED_FORM", Trifocal4ptRecovery::kPaperClosedForm);
+      .value("ENFORCED", Trifocal4ptRecovery::kEnforced, "constraint enforcement")
+      .value("LEAST_SQUARES", Trifocal4ptRecovery::kLeastSquares,
+             "the least-squares read of the tensor")
+      .value("PAPER_CLOSED_FORM", Trifocal4ptRecovery::kPaperClosedForm)
+      .value("LEAST_SQUARES_IF_MINIMAL", Trifocal4ptRecovery::kLeastSquaresIfMinimal,
+             "LEAST_SQUARES for 4 triplets, ENFORCED for more (the default)");
   py::enum_<Trifocal4ptEpipoles>(m, "Trifocal4ptEpipoles",
                                  "Where the 4-point solver's constraint enforcement takes the "
                                  "epipoles from.")
@@ -76,11 +79,13 @@ void BindTrifocal4ptOptions(py::module_& m) {
       .Field("recovery", &Trifocal4ptOptions::recovery, "Trifocal4ptRecovery")
       .Field("epipoles", &Trifocal4ptOptions::epipoles, "Trifocal4ptEpipoles (ENFORCED)")
       .Field("resolve_translations", &Trifocal4ptOptions::resolve_translations,
-             "re-solve the centres from all triplets with the yaws fixed")
+             "re-solve the centres from all triplets with the yaws fixed (not after the "
+             "default's least-squares read of 4 triplets)")
       .Field("epipole_iterations", &Trifocal4ptOptions::epipole_iterations,
              "re-estimations of the epipoles (ENFORCED)")
       .Field("polish_iterations", &Trifocal4ptOptions::polish_iterations,
-             "Gauss-Newton steps on the incidence residuals")
+             "at most this many Gauss-Newton steps on the incidence residuals, fewer once "
+             "converged (the default with more than 4 triplets: at most 1)")
       .Finish(&Trifocal4ptOptions::Check);
 }
 

@@ -102,6 +102,7 @@ class Trifocal4ptRecovery:
     ENFORCED: ClassVar[Trifocal4ptRecovery]
     LEAST_SQUARES: ClassVar[Trifocal4ptRecovery]
     PAPER_CLOSED_FORM: ClassVar[Trifocal4ptRecovery]
+    LEAST_SQUARES_IF_MINIMAL: ClassVar[Trifocal4ptRecovery]
     def __init__(self, value: int) -> None: ...
     @property
     def name(self) -> str: ...

@@ -33,7 +33,9 @@ DEFINE_string(
     solver,
     "4pt",
     "Solver: 3pt (decoupled, best-ranked candidate), 3pt-sextic (the paper's system), "
-    "4pt (trigrav's default pipeline), 4pt-unpolished (derivations.md section 4.3: no polish), "
+    "4pt (trigrav's default pipeline: the least-squares read polished until converged), "
+    "4pt-enforced (derivations.md section 4.3, the re-solve and one polish step: the default "
+    "pipeline for more than 4 triplets), 4pt-unpolished (the same without the polish), "
     "4pt-paper (paper III-D: enforced with the tensor's epipoles, no translation re-solve, no "
     "polish), "
     "4pt-closed-form (paper eqs c8-c11, no enforcement), 4pt-least-squares (derivations.md "
@@ -88,7 +90,8 @@ const std::map<std::string, GravitySolver>& Solvers() {
           const Eigen::Vector3d& g2, const Eigen::Vector3d& g3, std::vector<ThreeViewPose>* out) {
          return trigrav::SolveTrifocal3ptSextic(x1, x2, x3, g1, g2, g3, out);
        }},
-      {"4pt", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 1)},
+      {"4pt", Trifocal4pt(Trifocal4ptRecovery::kLeastSquaresIfMinimal, true, 8)},
+      {"4pt-enforced", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 1)},
       {"4pt-unpolished", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 0)},
       {"4pt-paper", Trifocal4pt(Trifocal4ptRecovery::kEnforced, false, 0,
                                 trigrav::Trifocal4ptEpipoles::kTensorNullVectors)},

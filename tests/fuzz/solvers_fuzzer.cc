@@ -66,11 +66,11 @@ RayProblem DecodeRayProblem(FuzzInput* input) {
 
 Trifocal4ptOptions DecodeTrifocal4ptOptions(FuzzInput* input) {
   Trifocal4ptOptions options;
-  options.recovery = static_cast<Trifocal4ptRecovery>(input->Index(3));
+  options.recovery = static_cast<Trifocal4ptRecovery>(input->Index(4));
   options.epipoles = static_cast<Trifocal4ptEpipoles>(input->Index(2));
   options.resolve_translations = input->Byte() % 2 == 0;
   options.epipole_iterations = input->Index(4);
-  options.polish_iterations = input->Index(4);
+  options.polish_iterations = input->Index(9);
   return options;
 }
 

@@ -219,8 +219,9 @@ TEST(Trifocal4pt, YawNear180Degrees) {
 }
 
 // Camera 2 moved straight along gravity: its horizontal epipole vanishes, so the least-squares
-// read of q that gives the default enforcement its epipoles is undefined (derivations.md sections
-// 4.2-4.3) and the tensor's own epipoles take over. The pose is still exact.
+// read of q is undefined (derivations.md section 4.2). The default recovery then takes the
+// enforcement, and the enforcement's default epipoles the tensor's own (sections 4.3 and 4.7): the
+// pose is still exact. The read alone (kLeastSquares) gives no solution.
 TEST(Trifocal4pt, VerticalMotionFallsBackToTheTensorsEpipoles) {
   const std::vector<Eigen::Vector3d> points = {
       {0.3, -0.2, 4.0}, {-0.5, 0.4, 6.0}, {0.8, 0.6, 5.0}, {-0.2, -0.7, 7.5}};
@@ -236,15 +237,51 @@ TEST(Trifocal4pt, VerticalMotionFallsBackToTheTensorsEpipoles) {
   const double scale = center2.norm();
   const ThreeViewPose truth = {CameraPose{R2, -R2 * center2 / scale},
                                CameraPose{R3, -R3 * center3 / scale}};
-  for (const Trifocal4ptEpipoles epipoles :
-       {Trifocal4ptEpipoles::kLeastSquaresReadIfMinimal, Trifocal4ptEpipoles::kTensorNullVectors}) {
-    Trifocal4ptOptions options;
-    options.epipoles = epipoles;
-    std::vector<ThreeViewPose> solutions;
-    ASSERT_EQ(SolveTrifocal4pt(x1, x2, x3, options, &solutions), 1);
-    const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(truth, solutions[0]);
-    EXPECT_LT(e.MaxAngleDeg(), 1e-8) << static_cast<int>(epipoles);
-    EXPECT_LT(e.relative_scale, 1e-9) << static_cast<int>(epipoles);
+  for (const Trifocal4ptRecovery recovery :
+       {Trifocal4ptRecovery::kLeastSquaresIfMinimal, Trifocal4ptRecovery::kEnforced}) {
+    for (const Trifocal4ptEpipoles epipoles : {Trifocal4ptEpipoles::kLeastSquaresReadIfMinimal,
+                                               Trifocal4ptEpipoles::kTensorNullVectors}) {
+      Trifocal4ptOptions options;
+      options.recovery = recovery;
+      options.epipoles = epipoles;
+      std::vector<ThreeViewPose> solutions;
+      ASSERT_EQ(SolveTrifocal4pt(x1, x2, x3, options, &solutions), 1);
+      const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(truth, solutions[0]);
+      EXPECT_LT(e.MaxAngleDeg(), 1e-8) << static_cast<int>(recovery) << static_cast<int>(epipoles);
+      EXPECT_LT(e.relative_scale, 1e-9) << static_cast<int>(recovery) << static_cast<int>(epipoles);
+    }
+  }
+  Trifocal4ptOptions read_alone;
+  read_alone.recovery = Trifocal4ptRecovery::kLeastSquares;
+  std::vector<ThreeViewPose> solutions;
+  EXPECT_EQ(SolveTrifocal4pt(x1, x2, x3, read_alone, &solutions), 0);
+}
+
+// The default recovery is the least-squares read with no re-solve for 4 triplets, the enforcement
+// with the re-solve and at most one polish step for more (derivations.md section 4.7): with noise,
+// bit-for-bit the same poses as those pipelines spelled out.
+TEST(Trifocal4pt, DefaultPipelineDependsOnTheNumberOfTriplets) {
+  Trifocal4ptOptions read;
+  read.recovery = Trifocal4ptRecovery::kLeastSquares;
+  read.resolve_translations = false;
+  Trifocal4ptOptions enforced;
+  enforced.recovery = Trifocal4ptRecovery::kEnforced;
+  enforced.polish_iterations = 1;
+  std::mt19937_64 rng(12);
+  for (const int num_points : {4, 6, 20}) {
+    SyntheticSceneOptions scene_options;
+    scene_options.pixel_noise_px = 1.0;
+    scene_options.num_points = num_points;
+    for (int trial = 0; trial < 50; ++trial) {
+      const SyntheticScene scene = GenerateSyntheticScene(scene_options, &rng);
+      std::vector<ThreeViewPose> by_default, spelled_out;
+      ASSERT_EQ(SolveScene(scene, Trifocal4ptOptions(), &by_default), 1);
+      ASSERT_EQ(SolveScene(scene, num_points == 4 ? read : enforced, &spelled_out), 1);
+      for (const auto pose : {&ThreeViewPose::cam2_from_cam1, &ThreeViewPose::cam3_from_cam1}) {
+        EXPECT_EQ((by_default[0].*pose).R, (spelled_out[0].*pose).R) << num_points << " " << trial;
+        EXPECT_EQ((by_default[0].*pose).t, (spelled_out[0].*pose).t) << num_points << " " << trial;
+      }
+    }
   }
 }
 

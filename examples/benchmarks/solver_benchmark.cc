@@ -209,15 +209,21 @@ void RegisterSolverBenchmarks() {
         break;
     }
   }
-  // 4-point variants: the pipeline of derivations.md section 4.7 (trigrav's default without the
-  // polish step) and the paper's closed forms (no enforcement, eqs c8-c11, no translation
-  // re-solve).
-  trigrav::Trifocal4ptOptions note;
-  note.polish_iterations = 0;
-  RegisterSolver("4pt-unpolished", 4,
-                 [note](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
-                   return trigrav::SolveTrifocal4pt(x1, x2, x3, note, solutions);
-                 });
+  // 4-point variants: the enforcement with the re-solve and one polish step (derivations.md
+  // sections 4.3-4.5, the default's pipeline for more than 4 triplets), the same without the
+  // polish, and the paper's closed forms (no enforcement, eqs c8-c11, no translation re-solve).
+  trigrav::Trifocal4ptOptions enforced;
+  enforced.recovery = trigrav::Trifocal4ptRecovery::kEnforced;
+  enforced.polish_iterations = 1;
+  trigrav::Trifocal4ptOptions unpolished = enforced;
+  unpolished.polish_iterations = 0;
+  for (const auto& [name, options] :
+       {std::pair{"4pt-enforced", enforced}, std::pair{"4pt-unpolished", unpolished}}) {
+    RegisterSolver(name, 4,
+                   [options](const auto& x1, const auto& x2, const auto& x3, auto* solutions) {
+                     return trigrav::SolveTrifocal4pt(x1, x2, x3, options, solutions);
+                   });
+  }
   trigrav::Trifocal4ptOptions closed_form;
   closed_form.recovery = trigrav::Trifocal4ptRecovery::kPaperClosedForm;
   closed_form.resolve_translations = false;

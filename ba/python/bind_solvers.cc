@@ -77,15 +77,17 @@ void BindTrifocal4ptOptions(py::module_& m) {
              "the tensor's null vectors at any size (the paper's)");
   OptionsClass<Trifocal4ptOptions>(m, "Trifocal4ptOptions", "Options of solve_trifocal_4pt.")
       .Field("recovery", &Trifocal4ptOptions::recovery, "Trifocal4ptRecovery")
-      .Field("epipoles", &Trifocal4ptOptions::epipoles, "Trifocal4ptEpipoles (ENFORCED)")
+      .Field("epipoles", &Trifocal4ptOptions::epipoles,
+             "Trifocal4ptEpipoles (ENFORCED; no effect with the default recovery)")
       .Field("resolve_translations", &Trifocal4ptOptions::resolve_translations,
              "re-solve the centres from all triplets with the yaws fixed (not after the "
              "default's least-squares read of 4 triplets)")
       .Field("epipole_iterations", &Trifocal4ptOptions::epipole_iterations,
-             "re-estimations of the epipoles (ENFORCED)")
+             "re-estimations of the epipoles (the enforcement: ENFORCED, and the default "
+             "recovery for more than 4 triplets)")
       .Field("polish_iterations", &Trifocal4ptOptions::polish_iterations,
              "at most this many Gauss-Newton steps on the incidence residuals, fewer once "
-             "converged (the default with more than 4 triplets: at most 1)")
+             "converged (the default recovery with more than 4 triplets: at most 1)")
       .Finish(&Trifocal4ptOptions::Check);
 }
 

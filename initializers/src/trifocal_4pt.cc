@@ -272,7 +272,8 @@ void ResolveCenters(std::size_t count, const FrameFunction& frame, AlignedEstima
 // r_ab = zr_b (left_a . rho2) + pu_a (right_b . rho3) with pu_a = left_a . R2 x1 and
 // zr_b = -right_b . R3 x1: the yaws enter through R2 x1 and R3 x1 only. Writes the cost |r|^2 at
 // the estimate it started from (|rho| = 1). Returns true if the step was at rounding level
-// (converged); leaves the estimate unchanged if the step is not finite (and returns true).
+// (converged); leaves the estimate unchanged, and returns true, if the centres are zero or the
+// step is not finite.
 template <typename FrameFunction>
 bool PolishYawsAndCenters(std::size_t count,
                           const FrameFunction& frame,
@@ -281,6 +282,7 @@ bool PolishYawsAndCenters(std::size_t count,
   Vector6d rho;
   rho << estimate->yaw2.Matrix() * estimate->center2, estimate->yaw3.Matrix() * estimate->center3;
   const double norm = rho.norm();
+  *cost_at_start = 0.0;
   if (!(norm > 0.0)) return true;
   rho /= norm;
   const Eigen::Vector3d rho2 = rho.head<3>(), rho3 = rho.tail<3>();
@@ -347,6 +349,7 @@ bool PolishYawsAndCenters(std::size_t count,
     lm.noalias() += (pu[0] * f.left[0] + pu[1] * f.left[1]) *
                     (zr[0] * f.right[0] + zr[1] * f.right[1]).transpose();
   }
+  *cost_at_start = cost;
   JtJ.block<2, 6>(0, 2) = JtJ.block<6, 2>(2, 0).transpose();
   JtJ.block<3, 3>(2, 2) = ll;
   JtJ.block<3, 3>(2, 5) = lm;
@@ -356,8 +359,8 @@ bool PolishYawsAndCenters(std::size_t count,
   Eigen::Matrix<double, 8, 1> gauge = Eigen::Matrix<double, 8, 1>::Zero();
   gauge.tail<6>() = rho;
   JtJ.noalias() += (JtJ.trace() / 8.0) * gauge * gauge.transpose();
-  // With the gauge row JtJ is positive definite unless the data are degenerate: Cholesky (several
-  // times cheaper than pivoted LDLT at 8x8), LDLT only where Cholesky fails.
+  // With the gauge row JtJ is positive definite unless the data are degenerate: the
+  // square-root-free U^T D U solve, pivoted LDLT only where a pivot is not positive.
   Eigen::Matrix<double, 8, 1> step = -Jtr;
   if (!internal::SolveSymmetricPositiveDefiniteInPlace(JtJ, &step)) step = -JtJ.ldlt().solve(Jtr);
   if (!step.allFinite()) return true;
@@ -372,7 +375,6 @@ bool PolishYawsAndCenters(std::size_t count,
   rho += step.tail<6>();
   estimate->center2 = norm * (estimate->yaw2.Matrix().transpose() * rho.head<3>());
   estimate->center3 = norm * (estimate->yaw3.Matrix().transpose() * rho.tail<3>());
-  *cost_at_start = cost;
   // Quadratic convergence: after a step below 1e-8 the next one would be at rounding level.
   return step.squaredNorm() < 1e-16;
 }

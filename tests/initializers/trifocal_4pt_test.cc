@@ -135,6 +135,7 @@ TEST(Trifocal4pt, DegradesSmoothlyWithNoise) {
 TEST(Trifocal4pt, EachStageReducesTheError) {
   Trifocal4ptOptions least_squares;
   least_squares.recovery = Trifocal4ptRecovery::kLeastSquares;
+  least_squares.resolve_translations = false;
   least_squares.polish_iterations = 0;
   Trifocal4ptOptions enforced;
   enforced.recovery = Trifocal4ptRecovery::kEnforced;
@@ -255,31 +256,47 @@ TEST(Trifocal4pt, VerticalMotionFallsBackToTheTensorsEpipoles) {
   read_alone.recovery = Trifocal4ptRecovery::kLeastSquares;
   std::vector<ThreeViewPose> solutions;
   EXPECT_EQ(SolveTrifocal4pt(x1, x2, x3, read_alone, &solutions), 0);
+  // The fallback is the enforcement with the re-solve, bit for bit.
+  Trifocal4ptOptions enforced;
+  enforced.recovery = Trifocal4ptRecovery::kEnforced;
+  std::vector<ThreeViewPose> by_default, by_enforcement;
+  ASSERT_EQ(SolveTrifocal4pt(x1, x2, x3, &by_default), 1);
+  ASSERT_EQ(SolveTrifocal4pt(x1, x2, x3, enforced, &by_enforcement), 1);
+  for (const auto pose : {&ThreeViewPose::cam2_from_cam1, &ThreeViewPose::cam3_from_cam1}) {
+    EXPECT_EQ((by_default[0].*pose).R, (by_enforcement[0].*pose).R);
+    EXPECT_EQ((by_default[0].*pose).t, (by_enforcement[0].*pose).t);
+  }
 }
 
 // The default recovery is the least-squares read with no re-solve for 4 triplets, the enforcement
 // with the re-solve and at most one polish step for more (derivations.md section 4.7): with noise,
 // bit-for-bit the same poses as those pipelines spelled out.
 TEST(Trifocal4pt, DefaultPipelineDependsOnTheNumberOfTriplets) {
-  Trifocal4ptOptions read;
-  read.recovery = Trifocal4ptRecovery::kLeastSquares;
-  read.resolve_translations = false;
-  Trifocal4ptOptions enforced;
-  enforced.recovery = Trifocal4ptRecovery::kEnforced;
-  enforced.polish_iterations = 1;
   std::mt19937_64 rng(12);
-  for (const int num_points : {4, 6, 20}) {
-    SyntheticSceneOptions scene_options;
-    scene_options.pixel_noise_px = 1.0;
-    scene_options.num_points = num_points;
-    for (int trial = 0; trial < 50; ++trial) {
-      const SyntheticScene scene = GenerateSyntheticScene(scene_options, &rng);
-      std::vector<ThreeViewPose> by_default, spelled_out;
-      ASSERT_EQ(SolveScene(scene, Trifocal4ptOptions(), &by_default), 1);
-      ASSERT_EQ(SolveScene(scene, num_points == 4 ? read : enforced, &spelled_out), 1);
-      for (const auto pose : {&ThreeViewPose::cam2_from_cam1, &ThreeViewPose::cam3_from_cam1}) {
-        EXPECT_EQ((by_default[0].*pose).R, (spelled_out[0].*pose).R) << num_points << " " << trial;
-        EXPECT_EQ((by_default[0].*pose).t, (spelled_out[0].*pose).t) << num_points << " " << trial;
+  for (const int polish_iterations : {0, 1, 8}) {
+    Trifocal4ptOptions by_default;
+    by_default.polish_iterations = polish_iterations;
+    Trifocal4ptOptions read = by_default;
+    read.recovery = Trifocal4ptRecovery::kLeastSquares;
+    read.resolve_translations = false;
+    Trifocal4ptOptions enforced = by_default;
+    enforced.recovery = Trifocal4ptRecovery::kEnforced;
+    enforced.polish_iterations = std::min(polish_iterations, 1);
+    for (const int num_points : {4, 6, 20}) {
+      SyntheticSceneOptions scene_options;
+      scene_options.pixel_noise_px = 1.0;
+      scene_options.num_points = num_points;
+      for (int trial = 0; trial < 20; ++trial) {
+        const SyntheticScene scene = GenerateSyntheticScene(scene_options, &rng);
+        std::vector<ThreeViewPose> solved, spelled_out;
+        ASSERT_EQ(SolveScene(scene, by_default, &solved), 1);
+        ASSERT_EQ(SolveScene(scene, num_points == 4 ? read : enforced, &spelled_out), 1);
+        for (const auto pose : {&ThreeViewPose::cam2_from_cam1, &ThreeViewPose::cam3_from_cam1}) {
+          EXPECT_EQ((solved[0].*pose).R, (spelled_out[0].*pose).R)
+              << polish_iterations << " " << num_points << " " << trial;
+          EXPECT_EQ((solved[0].*pose).t, (spelled_out[0].*pose).t)
+              << polish_iterations << " " << num_points << " " << trial;
+        }
       }
     }
   }

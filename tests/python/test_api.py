@@ -92,6 +92,10 @@ def test_every_solver_finds_the_true_pose():
     assert best_error(trigrav.solve_trifocal_3pt(*three, gravity_in_cam=exact.gravity_in_cam_measured)) < 1e-6
     assert best_error(trigrav.solve_trifocal_3pt_sextic(*three, gravity_in_cam=exact.gravity_in_cam_measured)) < 1e-6
     assert best_error(trigrav.solve_trifocal_4pt(*[r[:4] for r in rays], gravity_in_cam=exact.gravity_in_cam_measured)) < 1e-6
+    assert trigrav.Trifocal4ptOptions().recovery == trigrav.Trifocal4ptRecovery.LEAST_SQUARES_IF_MINIMAL
+    enforced = trigrav.Trifocal4ptOptions(recovery=trigrav.Trifocal4ptRecovery.ENFORCED)
+    assert best_error(trigrav.solve_trifocal_4pt(*[r[:4] for r in rays], gravity_in_cam=exact.gravity_in_cam_measured,
+                                                 options=enforced)) < 1e-6
     assert best_error(trigrav.solve_trifocal_linear(*rays)) < 1e-6
     aligned = [trigrav.align_rays(a, r[:3]) for a, r in zip(exact.gravity_alignment_measured, rays)]
     upright = trigrav.solve_trifocal_3pt(*aligned)

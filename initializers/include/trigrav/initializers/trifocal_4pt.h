@@ -35,7 +35,9 @@ namespace trigrav {
 // At 1 px (minimal_solver_accuracy --trials=3000: 4 triplets, f = 500 px) the default's median
 // rotation error is 0.63 deg, against 0.87 deg for the enforcement with the re-solve and one
 // polish step, 2.8 deg without the polish and 11.5 deg for the least-squares read alone; noise-free
-// all are exact to rounding.
+// all are exact to rounding. recovery = kEnforced (with the default polish to convergence) is the
+// most accurate choice with noise (1 px: 0.57 deg; derivations.md section 4.7 has more) at 1.6x
+// the default's time at 1 px and 1.9x noise-free.
 // With noise, the result depends slightly on which yaw the caller's alignment rotations choose (the
 // normalisation |q| = 1 is not yaw-invariant); the gravity overload always uses
 // GravityAlignmentFromGravity.
@@ -53,7 +55,9 @@ enum class Trifocal4ptRecovery {
 };
 
 // Where constraint enforcement (kEnforced) takes the epipoles from (derivations.md section 4.3
-// step 1).
+// step 1). No effect with the default recovery: for 4 triplets it reads the pose without
+// enforcement (and where that read is undefined, so are the read's epipoles), for more it takes
+// the null vectors of T_i either way.
 enum class Trifocal4ptEpipoles {
   kLeastSquaresReadIfMinimal,  // the least-squares read of q for 4 triplets (more accurate and
                                // cheaper there), the null vectors of T_i for more: the default
@@ -68,17 +72,19 @@ struct Trifocal4ptOptions {
   // default recovery does not re-solve after its least-squares read of 4 triplets: at the read's
   // yaws the re-solve moves the centres away from the polish's optimum.
   bool resolve_translations = true;
-  // With kEnforced: times to re-estimate the epipoles from the current pose and repeat enforcement
-  // and the translation solve (derivations.md section 4.5; not in the paper). Each pass costs about
-  // a microsecond; without polish it lowers the 1 px, 4-triplet median rotation error from 2.8 deg
-  // (0 passes) to 2.3 (3) and 1.9 (10) (3,000 scenes, SyntheticSceneOptions defaults). With one
-  // polish step (0.87 deg) it is not needed.
+  // With the enforcement (kEnforced; the default recovery for more than 4 triplets, and for 4
+  // where its read is undefined): times to re-estimate the epipoles from the current pose and
+  // repeat enforcement and the translation solve (derivations.md section 4.5; not in the paper).
+  // Each pass costs about a microsecond; without polish it lowers the 1 px, 4-triplet median
+  // rotation error from 2.8 deg (0 passes) to 2.3 (3) and 1.9 (10) (3,000 scenes,
+  // SyntheticSceneOptions defaults). With one polish step (0.87 deg) it is not needed.
   int epipole_iterations = 0;
   // At most this many Gauss-Newton steps on the incidence residuals over yaws and centres jointly
   // (step 3 above; about 0.37 microseconds each on 4 triplets). The polish ends early once a step
   // is at rounding level or the step before the last changed the cost by less than 1 %: one step
-  // noise-free, 5.7 on average at 1 px. The default recovery runs at most one step for more than 4
-  // triplets (more lowered the algebraic cost but not KITTI's errors). 0 leaves the polish out.
+  // noise-free, 5.85 on average at 1 px from the least-squares read. The default recovery runs at
+  // most one step for more than 4 triplets (more lowered the algebraic cost but not KITTI's
+  // errors); the explicit recoveries run up to this many at any size. 0 leaves the polish out.
   int polish_iterations = 8;
 
   // Throws std::invalid_argument naming the first bad field: recovery or epipoles not one of the

@@ -35,7 +35,8 @@ DEFINE_string(
     "Solver: 3pt (decoupled, best-ranked candidate), 3pt-sextic (the paper's system), "
     "4pt (trigrav's default pipeline: the least-squares read polished until converged), "
     "4pt-enforced (derivations.md section 4.3, the re-solve and one polish step: the default "
-    "pipeline for more than 4 triplets), 4pt-unpolished (the same without the polish), "
+    "pipeline for more than 4 triplets), 4pt-enforced-converged (the same polished until "
+    "converged: recovery = kEnforced), 4pt-unpolished (the same without the polish), "
     "4pt-paper (paper III-D: enforced with the tensor's epipoles, no translation re-solve, no "
     "polish), "
     "4pt-closed-form (paper eqs c8-c11, no enforcement), 4pt-least-squares (derivations.md "
@@ -92,6 +93,7 @@ const std::map<std::string, GravitySolver>& Solvers() {
        }},
       {"4pt", Trifocal4pt(Trifocal4ptRecovery::kLeastSquaresIfMinimal, true, 8)},
       {"4pt-enforced", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 1)},
+      {"4pt-enforced-converged", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 8)},
       {"4pt-unpolished", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 0)},
       {"4pt-paper", Trifocal4pt(Trifocal4ptRecovery::kEnforced, false, 0,
                                 trigrav::Trifocal4ptEpipoles::kTensorNullVectors)},

@@ -61,6 +61,15 @@ using GravitySolver = std::function<int(const Rays&,
                                         const Eigen::Vector3d&,
                                         std::vector<ThreeViewPose>*)>;
 
+GravitySolver Trifocal4pt(const trigrav::Trifocal4ptOptions& options) {
+  return [options](const Rays& x1, const Rays& x2, const Rays& x3, const Eigen::Vector3d& g1,
+                   const Eigen::Vector3d& g2, const Eigen::Vector3d& g3,
+                   std::vector<ThreeViewPose>* solutions) {
+    return trigrav::SolveTrifocal4pt(x1, x2, x3, g1, g2, g3, options, solutions);
+  };
+}
+
+// A variant of the 4-point pipeline (trifocal_4pt.h).
 GravitySolver Trifocal4pt(trigrav::Trifocal4ptRecovery recovery,
                           bool resolve_translations,
                           int polish_iterations,
@@ -71,11 +80,7 @@ GravitySolver Trifocal4pt(trigrav::Trifocal4ptRecovery recovery,
   options.epipoles = epipoles;
   options.resolve_translations = resolve_translations;
   options.polish_iterations = polish_iterations;
-  return [options](const Rays& x1, const Rays& x2, const Rays& x3, const Eigen::Vector3d& g1,
-                   const Eigen::Vector3d& g2, const Eigen::Vector3d& g3,
-                   std::vector<ThreeViewPose>* solutions) {
-    return trigrav::SolveTrifocal4pt(x1, x2, x3, g1, g2, g3, options, solutions);
-  };
+  return Trifocal4pt(options);
 }
 
 const std::map<std::string, GravitySolver>& Solvers() {
@@ -91,7 +96,7 @@ const std::map<std::string, GravitySolver>& Solvers() {
           const Eigen::Vector3d& g2, const Eigen::Vector3d& g3, std::vector<ThreeViewPose>* out) {
          return trigrav::SolveTrifocal3ptSextic(x1, x2, x3, g1, g2, g3, out);
        }},
-      {"4pt", Trifocal4pt(Trifocal4ptRecovery::kLeastSquaresIfMinimal, true, 8)},
+      {"4pt", Trifocal4pt(trigrav::Trifocal4ptOptions())},
       {"4pt-enforced", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 1)},
       {"4pt-enforced-converged", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 8)},
       {"4pt-unpolished", Trifocal4pt(Trifocal4ptRecovery::kEnforced, true, 0)},

@@ -280,17 +280,13 @@ bool PolishYawsAndCenters(std::size_t count,
                           AlignedEstimate* estimate,
                           double* cost_at_start) {
   Vector6d rho;
-  rho << estimate->yaw2.Matrix() * estimate->center2, estimate->yaw3.Matrix() * estimate->center3;
+  rho << estimate->yaw2.Rotate(estimate->center2), estimate->yaw3.Rotate(estimate->center3);
   const double norm = rho.norm();
   *cost_at_start = 0.0;
   if (!(norm > 0.0)) return true;
   rho /= norm;
   const Eigen::Vector3d rho2 = rho.head<3>(), rho3 = rho.tail<3>();
-  // R_y x = (c x_x + s x_z, x_y, -s x_x + c x_z); dR_y/dtheta x = K R_y x with K v = (v_z, 0,
-  // -v_x).
-  const auto rotate = [](const Yaw& yaw, const Eigen::Vector3d& x) {
-    return Eigen::Vector3d(yaw.c * x.x() + yaw.s * x.z(), x.y(), yaw.c * x.z() - yaw.s * x.x());
-  };
+  // dR_y/dtheta x = K R_y x with K v = (v_z, 0, -v_x).
   const auto K = [](const Eigen::Vector3d& v) { return Eigen::Vector3d(v.z(), 0.0, -v.x()); };
   // Normal equations of the 4N x 8 Jacobian [dr/dtheta2, dr/dtheta3, dr/drho], accumulated per
   // triplet in factored form: the rho block of row (a, b) is [zr_b left_a^T, pu_a right_b^T], so
@@ -305,8 +301,8 @@ bool PolishYawsAndCenters(std::size_t count,
   double cost = 0.0;
   for (std::size_t n = 0; n < count; ++n) {
     const internal::TripletFrame& f = frame(n);
-    const Eigen::Vector3d u = rotate(estimate->yaw2, f.x1), Ku = K(u);
-    const Eigen::Vector3d z = rotate(estimate->yaw3, f.x1), Kz = K(z);
+    const Eigen::Vector3d u = estimate->yaw2.Rotate(f.x1), Ku = K(u);
+    const Eigen::Vector3d z = estimate->yaw3.Rotate(f.x1), Kz = K(z);
     double alpha[2], pu[2], dpu[2], beta[2], zr[2], dzr[2];
     for (int i = 0; i < 2; ++i) {
       alpha[i] = f.left[i].dot(rho2);
@@ -342,9 +338,9 @@ bool PolishYawsAndCenters(std::size_t count,
     Jtr.tail<6>() += Ftv.col(2);
     const double zz = zr[0] * zr[0] + zr[1] * zr[1];
     const double pp = pu[0] * pu[0] + pu[1] * pu[1];
-    ll.diagonal().array() += zz * f.x2_squared_norm;
+    ll.diagonal().array() += zz * f.x2.squaredNorm();
     ll.noalias() -= (zz * f.x2) * f.x2.transpose();
-    mm.diagonal().array() += pp * f.x3_squared_norm;
+    mm.diagonal().array() += pp * f.x3.squaredNorm();
     mm.noalias() -= (pp * f.x3) * f.x3.transpose();
     lm.noalias() += (pu[0] * f.left[0] + pu[1] * f.left[1]) *
                     (zr[0] * f.right[0] + zr[1] * f.right[1]).transpose();
@@ -373,8 +369,8 @@ bool PolishYawsAndCenters(std::size_t count,
   estimate->yaw2 = turn(estimate->yaw2, step[0]);
   estimate->yaw3 = turn(estimate->yaw3, step[1]);
   rho += step.tail<6>();
-  estimate->center2 = norm * (estimate->yaw2.Matrix().transpose() * rho.head<3>());
-  estimate->center3 = norm * (estimate->yaw3.Matrix().transpose() * rho.tail<3>());
+  estimate->center2 = norm * estimate->yaw2.RotateBack(rho.head<3>());
+  estimate->center3 = norm * estimate->yaw3.RotateBack(rho.tail<3>());
   // Quadratic convergence: after a step below 1e-8 the next one would be at rounding level.
   return step.squaredNorm() < 1e-16;
 }

@@ -36,6 +36,13 @@ struct Yaw {
     R << c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c;
     return R;
   }
+  // R_y x = (c x_x + s x_z, x_y, -s x_x + c x_z) and R_y^T x, without forming R_y.
+  Eigen::Vector3d Rotate(const Eigen::Vector3d& x) const {
+    return Eigen::Vector3d(c * x.x() + s * x.z(), x.y(), c * x.z() - s * x.x());
+  }
+  Eigen::Vector3d RotateBack(const Eigen::Vector3d& x) const {
+    return Eigen::Vector3d(c * x.x() - s * x.z(), x.y(), c * x.z() + s * x.x());
+  }
 };
 
 // Orthonormal basis (p1, p2) of the plane orthogonal to x (x non-zero).
@@ -52,7 +59,6 @@ struct TripletFrame {
   Eigen::Vector3d p[2], r[2];
   Eigen::Vector3d left[2], right[2];  // p_a x x2, r_b x x3
   Eigen::Vector3d x2, x3;
-  double x2_squared_norm = 0.0, x3_squared_norm = 0.0;
 };
 
 inline TripletFrame MakeTripletFrame(const Eigen::Vector3d& x1,
@@ -62,8 +68,6 @@ inline TripletFrame MakeTripletFrame(const Eigen::Vector3d& x1,
   frame.x1 = x1;
   frame.x2 = x2;
   frame.x3 = x3;
-  frame.x2_squared_norm = x2.squaredNorm();
-  frame.x3_squared_norm = x3.squaredNorm();
   PerpendicularBasis(x2, &frame.p[0], &frame.p[1]);
   PerpendicularBasis(x3, &frame.r[0], &frame.r[1]);
   for (int i = 0; i < 2; ++i) {

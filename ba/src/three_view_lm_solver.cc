@@ -327,8 +327,9 @@ class Engine {
   // points' Jacobi scales, (H_pp + D_p^2)^-1 and the point steps of the last step. About 1.3 kB per
   // point, taken over from the thread's previous engine of this kind and handed on to its next one
   // (ThreadStorage), so that a caller's loop of refinements reuses resident memory: allocated per
-  // solve, it was faulted in afresh each time (InitializeAndRefine at 875 triplets, dedicated
-  // engine: 18 % of the call).
+  // solve, it was faulted in afresh each time the allocator had returned it to the system
+  // (InitializeAndRefine at 875 triplets in a loop: 2.87 -> 2.36 ms,
+  // examples/benchmarks/README.md).
   struct Storage {
     std::vector<Eigen::Vector3d> points, candidate_points;
     Linearization current, candidate;

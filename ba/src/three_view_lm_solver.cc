@@ -184,14 +184,21 @@ class Engine {
     }
     const std::size_t n = triplets.size();
     std::swap(storage_, ThreadStorage());
+    // Reserved before resizing, so that each capacity is the largest size this thread has needed
+    // (what kMaxRetainedPoints bounds), not a growing vector's doubling.
+    const auto size = [n](auto* buffer) {
+      buffer->reserve(n);
+      buffer->resize(n);
+    };
     for (Linearization* l : {&storage_.current, &storage_.candidate}) {
-      l->observations.resize(n);
-      l->points.resize(n);
+      size(&l->observations);
+      size(&l->points);
     }
-    storage_.point_scale_squared.resize(n);
-    storage_.point_inverse.resize(n);
-    storage_.point_step.resize(n);
-    storage_.candidate_points.resize(n);
+    size(&storage_.point_scale_squared);
+    size(&storage_.point_inverse);
+    size(&storage_.point_step);
+    size(&storage_.candidate_points);
+    storage_.points.reserve(n);
     for (int j = 0; j < 2; ++j) {
       std::copy_n(adjuster->CenterBlock(j + 2), 3, x_.center[j]);
       std::copy_n(adjuster->RotationBlock(j + 2), kRot == 1 ? 1 : 4,
@@ -324,9 +331,10 @@ class Engine {
   Pose x_, candidate_x_;
   PoseVector pose_scale_squared_;
   // Per-point storage: the points at the iterate and the candidate, their linearisations, the
-  // points' Jacobi scales, (H_pp + D_p^2)^-1 and the point steps of the last step. About 1.3 kB per
+  // points' Jacobi scales, (H_pp + D_p^2)^-1 and the point steps of the last step. 1.2-1.4 kB per
   // point, taken over from the thread's previous engine of this kind and handed on to its next one
-  // (ThreadStorage), so that a caller's loop of refinements reuses resident memory: allocated per
+  // (ThreadStorage, one per residual type and rotation model, held until the thread exits), so that
+  // a caller's loop of refinements reuses resident memory: allocated per
   // solve, it was faulted in afresh each time the allocator had returned it to the system
   // (InitializeAndRefine at 875 triplets in a loop: 2.87 -> 2.36 ms,
   // examples/benchmarks/README.md).
@@ -337,7 +345,7 @@ class Engine {
     std::vector<Eigen::Matrix3d> point_inverse;
     std::vector<Eigen::Vector3d> point_step;
   };
-  // Storage for more points than this is freed with the engine instead (about 10 MB).
+  // Storage for more points than this is freed with the engine instead (10-12 MB).
   static constexpr std::size_t kMaxRetainedPoints = 8192;
   static Storage& ThreadStorage() {
     thread_local Storage storage;

@@ -27,7 +27,8 @@ template <int N>
 void ExpectEqualsLdlt(std::mt19937_64* rng) {
   for (int trial = 0; trial < 200; ++trial) {
     const Eigen::Matrix<double, N, N> A = RandomPositiveDefinite<N>(rng);
-    const Eigen::Matrix<double, N, 1> b = Eigen::Matrix<double, N, 1>::Random();
+    Eigen::Matrix<double, N, 1> b;
+    for (int i = 0; i < N; ++i) b[i] = std::normal_distribution<double>()(*rng);
     const Eigen::Matrix<double, N, 1> expected = A.ldlt().solve(b);
     // The strict lower triangle is never read: NaN there changes nothing.
     Eigen::Matrix<double, N, N> upper = A;

@@ -62,8 +62,9 @@ struct ThreeViewBundleAdjustmentOptions {
   //  - kDedicated: trigrav's own Levenberg-Marquardt on problem()'s cost (derivations.md section
   //    13): each point's 3 x 3 block eliminated, a fixed-size 7 x 7 (11 x 11) reduced system, no
   //    ceres::Problem built, no allocation per iteration; the fastest
-  //    (examples/benchmarks/README.md). Its per-point storage (about 1.3 kB per point) is kept
-  //    for the calling thread's next solve, up to 8,192 points. When Build() was given known points it departs from
+  //    (examples/benchmarks/README.md). Its per-point storage (1.2-1.4 kB per point) is kept for
+  //    the calling thread's next solve of the same kind (residual type and rotation model), up to
+  //    8,192 points, until the thread exits. When Build() was given known points it departs from
   //    Ceres' rules (section 13.6): it first moves the triangulated points to their optimum for
   //    the starting cameras, and at the function tolerance keeps the last candidate if it would
   //    be accepted. Uses neither linear_solver_type nor num_threads, and

@@ -198,13 +198,12 @@ class Engine {
     size(&storage_.point_inverse);
     size(&storage_.point_step);
     size(&storage_.candidate_points);
-    storage_.points.reserve(n);
     for (int j = 0; j < 2; ++j) {
       std::copy_n(adjuster->CenterBlock(j + 2), 3, x_.center[j]);
       std::copy_n(adjuster->RotationBlock(j + 2), kRot == 1 ? 1 : 4,
                   kRot == 1 ? &x_.yaw[j] : x_.quaternion[j]);
     }
-    storage_.points = adjuster->points();
+    storage_.points = adjuster->points();  // reallocates to exactly n only when too small
   }
 
   ~Engine() {

@@ -111,8 +111,8 @@ std::array<Eigen::Vector3d, 2> RotatedCentersFromQ(const Vector17d& q, double ty
 // Centres from q given the yaws.
 void CentersFromQ(const Vector17d& q, double ty2, double ty3, AlignedEstimate* estimate) {
   const std::array<Eigen::Vector3d, 2> rotated = RotatedCentersFromQ(q, ty2, ty3);
-  estimate->center2 = estimate->yaw2.Matrix().transpose() * rotated[0];
-  estimate->center3 = estimate->yaw3.Matrix().transpose() * rotated[1];
+  estimate->center2 = estimate->yaw2.RotateBack(rotated[0]);
+  estimate->center3 = estimate->yaw3.RotateBack(rotated[1]);
 }
 
 // Constraint enforcement for given epipoles (eqs f2-f7) and the pose read from a (derivations.md
@@ -159,8 +159,8 @@ bool EnforceConstraints(const IncidenceMatrix& M,
   const double sign6 = a[5] < 0.0 ? -1.0 : 1.0;
   estimate->yaw2 = Yaw::FromDirection(sign3 * a[0], sign3 * a[1]);
   estimate->yaw3 = Yaw::FromDirection(sign6 * a[3], sign6 * a[4]);
-  estimate->center2 = -a[5] * estimate->yaw2.Matrix().transpose() * epipole2;
-  estimate->center3 = -a[2] * estimate->yaw3.Matrix().transpose() * epipole3;
+  estimate->center2 = -a[5] * estimate->yaw2.RotateBack(epipole2);
+  estimate->center3 = -a[2] * estimate->yaw3.RotateBack(epipole3);
   return true;
 }
 
@@ -485,8 +485,8 @@ int SolveAligned(const std::vector<Eigen::Vector3d>& x1,
   if (pipeline.recovery == Trifocal4ptRecovery::kEnforced) {
     // Epipoles of the current pose, e' ~ R2 c2 and e'' ~ R3 c3, then enforcement and centres again.
     for (int iteration = 0; iteration < options.epipole_iterations; ++iteration) {
-      epipole2 = (estimate.yaw2.Matrix() * estimate.center2).normalized();
-      epipole3 = (estimate.yaw3.Matrix() * estimate.center3).normalized();
+      epipole2 = estimate.yaw2.Rotate(estimate.center2).normalized();
+      epipole3 = estimate.yaw3.Rotate(estimate.center3).normalized();
       if (!epipole2.allFinite() || !epipole3.allFinite() ||
           !EnforceConstraints(M, epipole2, epipole3, &estimate)) {
         return 0;

@@ -192,6 +192,7 @@ void BindInitializeAndRefine(py::module_& m) {
       .def_readonly("success", &ThreeViewEstimate::success)
       .def_readonly("message", &ThreeViewEstimate::message,
                     "why not, when not success; a note when the refinement fell back")
+      .def_readonly("cause", &ThreeViewEstimate::cause, "FailureCause")
       .def_readonly("initial", &ThreeViewEstimate::initial, "the RANSAC winner")
       .def_property_readonly(
           "initial_inliers",
@@ -199,6 +200,7 @@ void BindInitializeAndRefine(py::module_& m) {
           "bool array: inliers of the RANSAC winner")
       .def_readonly("ransac", &ThreeViewEstimate::ransac)
       .def_readonly("gravity", &ThreeViewEstimate::gravity)
+      .def_readonly("evidence", &ThreeViewEstimate::evidence)
       .def_readonly("refined", &ThreeViewEstimate::refined,
                     "the answer: the refined pose (the initial one if not refined)")
       .def_property_readonly(

@@ -50,7 +50,10 @@ void BindRobustOptions(py::module_& m) {
              "how far a camera's gravity may be from what the images say, degrees; "
              "GRAVITY_CONSISTENCY_FROM_GRAVITY_SIGMA (-1, the default) derives it, inf skips it")
       .Field("check_gravity_after_success", &RobustThreeViewOptions::check_gravity_after_success,
-             "run the gravity check also after a success (False)")
+             "compare with a gravity-free estimate also after a success (True)")
+      .Field("max_pose_sigma_deg", &RobustThreeViewOptions::max_pose_sigma_deg,
+             "largest predicted sigma of the rotations and centre directions for a success, "
+             "degrees (1.25); inf: no test")
       .Finish(&RobustThreeViewOptions::Check);
   options.cls().attr("TILT_CORRECTION_FROM_GRAVITY_SIGMA") =
       RobustThreeViewOptions::kTiltCorrectionFromGravitySigma;
@@ -59,6 +62,28 @@ void BindRobustOptions(py::module_& m) {
 }
 
 void BindResults(py::module_& m) {
+  py::enum_<FailureCause>(m, "FailureCause", "Why an estimate is not a success.")
+      .value("NONE", FailureCause::kNone, "a success")
+      .value("TOO_FEW_TRIPLETS", FailureCause::kTooFewTriplets,
+             "fewer triplets than the minimal sample, or no model")
+      .value("BELOW_INLIER_FLOOR", FailureCause::kBelowInlierFloor,
+             "no model explains ransac.min_inlier_ratio of the triplets")
+      .value("TOO_FEW_INLIERS", FailureCause::kTooFewInliers, "fewer inliers than min_inliers")
+      .value("CHANCE_CONSENSUS", FailureCause::kChanceConsensus,
+             "as many inliers would fit by chance")
+      .value("UNCERTAIN_POSE", FailureCause::kUncertainPose,
+             "the inliers leave the pose uncertain (max_pose_sigma_deg)")
+      .value("NO_PARALLAX", FailureCause::kNoParallax, "camera 2's centre is not observable")
+      .value("PIXELS_VS_INTRINSICS", FailureCause::kPixelsVsIntrinsics,
+             "pixels the intrinsics cannot produce")
+      .value("VIEWS_OUT_OF_ORDER", FailureCause::kViewsOutOfOrder, "views 2 and 3 swapped")
+      .value("CAMERA_GRAVITY", FailureCause::kCameraGravity,
+             "a camera's gravity contradicts the images")
+      .value("NOISY_GRAVITY", FailureCause::kNoisyGravity,
+             "the gravity is noisier than the rotation model allows")
+      .value("OTHER_MOTION", FailureCause::kOtherMotion,
+             "a gravity-free model explains more and disagrees");
+
   py::class_<RansacStatistics>(m, "RansacStatistics", "What a RANSAC run did.")
       .def_readonly("num_inliers", &RansacStatistics::num_inliers)
       .def_readonly("iterations", &RansacStatistics::iterations, "samples drawn")
@@ -88,16 +113,33 @@ void BindResults(py::module_& m) {
                ", inconsistent_camera=" + std::to_string(g.inconsistent_camera) + ")";
       });
 
+  py::class_<ConsensusEvidence>(m, "ConsensusEvidence",
+                                "How much the RANSAC winner's consensus says.")
+      .def_readonly("log10_nfa", &ConsensusEvidence::log10_nfa,
+                    "log10 of the number of false alarms; below 0 for a success")
+      .def_readonly("rotation_sigma_deg", &ConsensusEvidence::rotation_sigma_deg,
+                    "predicted at a noise of the threshold / 3")
+      .def_readonly("direction_sigma_deg", &ConsensusEvidence::direction_sigma_deg,
+                    "of the centres' directions, predicted at a noise of the threshold / 3")
+      .def("__repr__", [](const ConsensusEvidence& e) {
+        return "ConsensusEvidence(log10_nfa=" + std::string(py::repr(py::float_(e.log10_nfa))) +
+               ", rotation_sigma_deg=" + std::string(py::repr(py::float_(e.rotation_sigma_deg))) +
+               ", direction_sigma_deg=" + std::string(py::repr(py::float_(e.direction_sigma_deg))) +
+               ")";
+      });
+
   py::class_<RobustThreeViewEstimate>(m, "RobustThreeViewEstimate",
                                       "Result of estimate_three_view_pose_robust.")
       .def_readonly("success", &RobustThreeViewEstimate::success)
       .def_readonly("message", &RobustThreeViewEstimate::message, "why not, when not success")
+      .def_readonly("cause", &RobustThreeViewEstimate::cause, "FailureCause")
       .def_readonly("pose", &RobustThreeViewEstimate::pose, "|cam2_from_cam1.center| = 1")
       .def_property_readonly(
           "inliers", [](const RobustThreeViewEstimate& e) { return MaskToArray(e.inliers); },
           "bool array, one entry per triplet")
       .def_readonly("ransac", &RobustThreeViewEstimate::ransac)
       .def_readonly("gravity", &RobustThreeViewEstimate::gravity)
+      .def_readonly("evidence", &RobustThreeViewEstimate::evidence)
       .def("__repr__", [](const RobustThreeViewEstimate& e) {
         return "RobustThreeViewEstimate(success=" + std::string(e.success ? "True" : "False") +
                ", num_inliers=" + std::to_string(e.ransac.num_inliers) +

@@ -193,6 +193,7 @@ class RobustThreeViewOptions:
     max_tilt_correction_deg: float
     max_gravity_inconsistency_deg: float
     check_gravity_after_success: bool
+    max_pose_sigma_deg: float
     def __init__(
         self,
         *,
@@ -201,7 +202,8 @@ class RobustThreeViewOptions:
         max_bearing_error_deg: float = 0.1,
         max_tilt_correction_deg: float = -1.0,
         max_gravity_inconsistency_deg: float = -1.0,
-        check_gravity_after_success: bool = False,
+        check_gravity_after_success: bool = True,
+        max_pose_sigma_deg: float = 1.25,
     ) -> None: ...
 
 class RansacStatistics:
@@ -228,11 +230,40 @@ class GravityConsistency:
     @property
     def inconsistent_camera(self) -> int: ...
 
+class FailureCause:
+    NONE: ClassVar[FailureCause]
+    TOO_FEW_TRIPLETS: ClassVar[FailureCause]
+    BELOW_INLIER_FLOOR: ClassVar[FailureCause]
+    TOO_FEW_INLIERS: ClassVar[FailureCause]
+    CHANCE_CONSENSUS: ClassVar[FailureCause]
+    UNCERTAIN_POSE: ClassVar[FailureCause]
+    NO_PARALLAX: ClassVar[FailureCause]
+    PIXELS_VS_INTRINSICS: ClassVar[FailureCause]
+    VIEWS_OUT_OF_ORDER: ClassVar[FailureCause]
+    CAMERA_GRAVITY: ClassVar[FailureCause]
+    NOISY_GRAVITY: ClassVar[FailureCause]
+    OTHER_MOTION: ClassVar[FailureCause]
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
+class ConsensusEvidence:
+    @property
+    def log10_nfa(self) -> float: ...
+    @property
+    def rotation_sigma_deg(self) -> float: ...
+    @property
+    def direction_sigma_deg(self) -> float: ...
+
 class RobustThreeViewEstimate:
     @property
     def success(self) -> bool: ...
     @property
     def message(self) -> str: ...
+    @property
+    def cause(self) -> FailureCause: ...
     @property
     def pose(self) -> ThreeViewPose: ...
     @property
@@ -241,6 +272,8 @@ class RobustThreeViewEstimate:
     def ransac(self) -> RansacStatistics: ...
     @property
     def gravity(self) -> GravityConsistency: ...
+    @property
+    def evidence(self) -> ConsensusEvidence: ...
 
 def estimate_three_view_pose_robust(
     observations: ThreeViewObservations, options: RobustThreeViewOptions = ...
@@ -413,6 +446,8 @@ class ThreeViewEstimate:
     @property
     def message(self) -> str: ...
     @property
+    def cause(self) -> FailureCause: ...
+    @property
     def initial(self) -> ThreeViewPose: ...
     @property
     def initial_inliers(self) -> Mask: ...
@@ -420,6 +455,8 @@ class ThreeViewEstimate:
     def ransac(self) -> RansacStatistics: ...
     @property
     def gravity(self) -> GravityConsistency: ...
+    @property
+    def evidence(self) -> ConsensusEvidence: ...
     @property
     def refined(self) -> ThreeViewPose: ...
     @property

@@ -76,6 +76,8 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
   estimate.timings.ransac_s = SecondsSince(start);
   estimate.ransac = ransac.ransac;
   estimate.gravity = ransac.gravity;
+  estimate.evidence = ransac.evidence;
+  estimate.cause = ransac.cause;
   if (!ransac.success || !ransac.pose.IsFinite()) {
     estimate.message = ransac.success ? "initial pose is not finite" : ransac.message;
     estimate.timings.total_s = SecondsSince(start);

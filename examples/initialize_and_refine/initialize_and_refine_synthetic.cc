@@ -35,6 +35,7 @@
 #include <cstdio>
 #include <fstream>
 #include <initializer_list>
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
@@ -228,6 +229,7 @@ void RunSingle() {
   long long true_inliers = 0, ransac_found = 0, ransac_true = 0, refined_found = 0,
             refined_true = 0;
   int failures = 0;
+  std::map<trigrav::FailureCause, int> failures_by_cause;
   for (int trial = 0; trial < FLAGS_trials; ++trial) {
     const trigrav::SyntheticScene scene = trigrav::GenerateSyntheticScene(scene_options, &rng);
     options.robust.ransac.seed = static_cast<std::uint64_t>(trial);
@@ -236,6 +238,7 @@ void RunSingle() {
     true_inliers += CountSet(scene.is_inlier);
     if (!estimate.success) {
       ++failures;
+      ++failures_by_cause[estimate.cause];
       if (trial < FLAGS_print_trials) {
         std::printf("trial %d: failed: %s\n", trial, estimate.message.c_str());
       }
@@ -286,7 +289,12 @@ void RunSingle() {
       ransac_true * per_estimate, refined_found * per_estimate, refined_true * per_estimate);
   std::printf("time per call (median): RANSAC %.2f ms, refinement %.2f ms\n",
               trigrav::Median(ransac_ms), trigrav::Median(refinement_ms));
-  std::printf("failures: %d of %d calls\n", failures, FLAGS_trials);
+  std::printf("failures: %d of %d calls", failures, FLAGS_trials);
+  for (const auto& [cause, count] : failures_by_cause) {
+    std::printf("%s %s %d", cause == failures_by_cause.begin()->first ? " (" : ", ",
+                trigrav::FailureCauseName(cause), count);
+  }
+  std::printf("%s\n", failures_by_cause.empty() ? "" : ")");
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -10,9 +10,12 @@ MethodPose RawStage(const ThreeViewEstimate& estimate) {
   MethodPose pose;
   pose.success = estimate.success;
   pose.message = estimate.message;
+  pose.cause = estimate.cause;
   pose.pose = estimate.initial;
   pose.inliers = estimate.initial_inliers;
   pose.ransac = estimate.ransac;
+  pose.gravity = estimate.gravity;
+  pose.evidence = estimate.evidence;
   pose.stage = kRawStage;
   pose.time_s = estimate.timings.ransac_s;
   return pose;
@@ -23,10 +26,13 @@ MethodPose RefinedStage(const char* stage, const ThreeViewEstimate& estimate) {
   MethodPose pose;
   pose.success = estimate.success && estimate.refinement_runs > 0;
   pose.message = estimate.message;
+  pose.cause = estimate.cause;
   pose.pose = estimate.refined;
   pose.inliers = estimate.inliers;
   pose.ransac = estimate.ransac;
   pose.ransac.num_inliers = estimate.num_inliers;
+  pose.gravity = estimate.gravity;
+  pose.evidence = estimate.evidence;
   pose.stage = stage;
   pose.time_s = estimate.timings.total_s;
   return pose;
@@ -49,12 +55,9 @@ Method TrigravMethod(InitialSolver solver, bool refine, const InitializeAndRefin
     std::vector<MethodPose> poses = {RawStage(yaw_only)};
     if (!run_options.refine) return poses;
     poses.push_back(RefinedStage(kYawOnlyStage, yaw_only));
-    if (!yaw_only.success) {  // no RANSAC estimate: the gravity-prior stage fails alike
-      poses.push_back(RefinedStage(kGravityPriorStage, yaw_only));
-      return poses;
-    }
-    // Same seed, other rotation model. Its RANSAC differs from the yaw-only one: with the
-    // gravity-prior model the local optimisation may correct the tilt (initialize_and_refine.h).
+    // Same seed, other rotation model, run whatever the yaw-only call gave: its RANSAC differs
+    // (the local optimisation may correct the tilt, initialize_and_refine.h) and so may its
+    // verdict.
     run_options.bundle_adjustment.rotation_model = RotationModel::kGravityPrior;
     poses.push_back(
         RefinedStage(kGravityPriorStage, InitializeAndRefine(observations, run_options)));

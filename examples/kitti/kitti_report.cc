@@ -104,6 +104,11 @@ PoseRecord EvaluatePose(int frame,
   record.num_inliers = pose.ransac.num_inliers;
   record.time_s = pose.time_s;
   record.pose = pose.pose;
+  record.message = pose.message;
+  record.cause = pose.cause;
+  record.msac_cost = pose.ransac.msac_cost;
+  record.evidence = pose.evidence;
+  record.gravity = pose.gravity;
   if (!record.success) return record;
   record.errors = ComputeThreeViewPoseErrors(ground_truth, pose.pose);
   if (!pose.relative_scale_known) {
@@ -181,6 +186,27 @@ std::vector<MethodSummary> Summarize(const KittiSequence& sequence,
   return summaries;
 }
 
+void PrintVerdictCounts(const std::vector<PoseRecord>& records, std::ostream& out) {
+  // Keys in the order of first appearance (methods and stages as the records list them).
+  std::vector<std::pair<std::string, std::map<FailureCause, int>>> counts;
+  for (const PoseRecord& r : records) {
+    const std::string key = r.method + " " + r.stage;
+    auto it = std::find_if(counts.begin(), counts.end(),
+                           [&](const auto& entry) { return entry.first == key; });
+    if (it == counts.end()) it = counts.insert(counts.end(), {key, {}});
+    ++it->second[r.success ? FailureCause::kNone : r.cause];
+  }
+  for (const auto& [key, by_cause] : counts) {
+    out << key << ": "
+        << (by_cause.count(FailureCause::kNone) ? by_cause.at(FailureCause::kNone) : 0)
+        << " successes";
+    for (const auto& [cause, count] : by_cause) {
+      if (cause != FailureCause::kNone) out << "; " << FailureCauseName(cause) << " " << count;
+    }
+    out << '\n';
+  }
+}
+
 void PrintSummaryTable(const std::vector<MethodSummary>& summaries,
                        std::ostream& out,
                        TableFormat format) {
@@ -224,19 +250,29 @@ bool WritePoseRecordsCsv(const std::string& path, const std::vector<PoseRecord>&
   std::ofstream file(path);
   file << "frame,method,stage,success,tracks,inliers,rot2_deg,rot3_deg,yaw2_deg,yaw3_deg,"
           "tilt2_deg,tilt3_deg,trans2_deg,trans3_deg,azimuth2_deg,azimuth3_deg,elevation2_deg,"
-          "elevation3_deg,log_scale_error,time_ms\n";
-  char line[512];
+          "elevation3_deg,log_scale_error,time_ms,log10_nfa,rotation_sigma_deg,"
+          "direction_sigma_deg,gravity_free_inliers,free_rotation_disagreement_deg,"
+          "free_direction_disagreement_deg,msac_cost,message\n";
+  char line[640];
   for (const PoseRecord& r : records) {
-    std::snprintf(line, sizeof(line),
-                  "%d,%s,%s,%d,%d,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,"
-                  "%.6g,%.4g\n",
-                  r.frame, r.method.c_str(), r.stage.c_str(), r.success ? 1 : 0, r.num_tracks,
-                  r.num_inliers, r.errors.rotation_deg[0], r.errors.rotation_deg[1],
-                  r.split[0].yaw_deg, r.split[1].yaw_deg, r.split[0].tilt_deg, r.split[1].tilt_deg,
-                  r.errors.translation_deg[0], r.errors.translation_deg[1], r.azimuth_deg[0],
-                  r.azimuth_deg[1], r.elevation_deg[0], r.elevation_deg[1], r.errors.relative_scale,
-                  1e3 * r.time_s);
-    file << line;
+    std::snprintf(
+        line, sizeof(line),
+        "%d,%s,%s,%d,%d,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,"
+        "%.6g,%.4g,%.4g,%.4g,%.4g,%d,%.4g,%.4g,%.6g,",
+        r.frame, r.method.c_str(), r.stage.c_str(), r.success ? 1 : 0, r.num_tracks, r.num_inliers,
+        r.errors.rotation_deg[0], r.errors.rotation_deg[1], r.split[0].yaw_deg, r.split[1].yaw_deg,
+        r.split[0].tilt_deg, r.split[1].tilt_deg, r.errors.translation_deg[0],
+        r.errors.translation_deg[1], r.azimuth_deg[0], r.azimuth_deg[1], r.elevation_deg[0],
+        r.elevation_deg[1], r.errors.relative_scale, 1e3 * r.time_s, r.evidence.log10_nfa,
+        r.evidence.rotation_sigma_deg, r.evidence.direction_sigma_deg,
+        r.gravity.measured ? r.gravity.num_inliers : -1,
+        std::max(r.gravity.rotation_disagreement_deg[0], r.gravity.rotation_disagreement_deg[1]),
+        std::max(r.gravity.direction_disagreement_deg[0], r.gravity.direction_disagreement_deg[1]),
+        r.msac_cost);
+    // The message as a quoted CSV field, its quotes doubled.
+    std::string message;
+    for (const char c : r.message) message += c == '"' ? std::string("\"\"") : std::string(1, c);
+    file << line << '"' << message << "\"\n";
   }
   return static_cast<bool>(file);
 }

@@ -31,6 +31,11 @@ struct PoseRecord {
   // atan2(-y, |(x, z)|). Their medians expose a bias that a median angle alone hides.
   double azimuth_deg[2] = {0.0, 0.0};
   double elevation_deg[2] = {0.0, 0.0};
+  std::string message;  // why not, when !success
+  FailureCause cause = FailureCause::kNone;
+  double msac_cost = 0.0;      // of the RANSAC winner
+  ConsensusEvidence evidence;  // of the RANSAC winner (robust_three_view.h)
+  GravityConsistency gravity;  // the gravity-free comparison (robust_three_view.h)
 };
 
 // A gross error: translation direction of view 2 or 3 off by more than this (or no pose).
@@ -79,6 +84,10 @@ enum class TableFormat { kText, kMarkdown };
 void PrintSummaryTable(const std::vector<MethodSummary>& summaries,
                        std::ostream& out,
                        TableFormat format = TableFormat::kText);
+
+// The verdict's counts per method and stage: successes, and failures by cause (FailureCause),
+// "method stage: N successes; cause M, ...".
+void PrintVerdictCounts(const std::vector<PoseRecord>& records, std::ostream& out);
 
 // Ratios row / column of mean time per triplet, median rotation error and median translation error
 // ("time / rotation / translation"; below 1: the row is faster or more accurate), one row per

@@ -73,9 +73,14 @@ DEFINE_int32(min_iterations, 100, "RANSAC minimum number of samples.");
 DEFINE_int32(max_iterations, 10000, "RANSAC maximum number of samples.");
 DEFINE_bool(local_optimization, true, "RANSAC local optimisation (LO+, ransac.h).");
 DEFINE_bool(check_gravity,
-            false,
-            "Check the gravity against a gravity-free estimate also after a success "
+            true,
+            "Compare with a gravity-free estimate also after a success "
             "(RobustThreeViewOptions::check_gravity_after_success).");
+DEFINE_string(mistake,
+              "none",
+              "A user's mistake applied to every triplet's tracks (track_mistakes.h): none, "
+              "views-2-3-swapped, other-intrinsics, half-resolution, row-column, five-tracks, "
+              "gravity-sign-camera-2.");
 DEFINE_double(imu_noise_deg,
               0.0,
               "IMU noise: sigma (deg) of each frame's pitch and roll error; 0 = exact gravity.");
@@ -256,6 +261,8 @@ kitti::SequenceEvaluationOptions EvaluationOptionsFromFlags(const std::string& c
   options.match.window_x_px = FLAGS_window_x_px;
   options.match.window_y_px = FLAGS_window_y_px;
   options.imu_noise_deg = FLAGS_imu_noise_deg;
+  RequireFlag(kitti::ParseTrackMistake(FLAGS_mistake, &options.mistake),
+              "--mistake: unknown mistake \"" + FLAGS_mistake + "\"");
   options.seed = FLAGS_seed;
   options.threads = FLAGS_threads;
   return options;
@@ -357,6 +364,8 @@ int main(int argc, char** argv) {
       "trajectory after rigid alignment\n");
   std::fflush(stdout);
   kitti::PrintSummaryTable(evaluation.summaries, std::cout, format);
+  std::cout << "verdict (successes; failures by cause; messages in poses.csv):\n";
+  kitti::PrintVerdictCounts(evaluation.records, std::cout);
   if (methods.size() > num_trigrav_methods) {
     // Rows: trigrav's methods and stages; columns: the peers.
     std::vector<const kitti::MethodSummary*> rows, columns;

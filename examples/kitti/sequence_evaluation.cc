@@ -114,6 +114,7 @@ bool EvaluateSequence(const KittiSequence& sequence,
           return;
         }
         const ThreeViewPose ground_truth = sequence.GroundTruthTriplet(frame);
+        ApplyTrackMistake(options.mistake, &triplet.observations);
         for (const Method& method : methods) {
           for (const MethodPose& pose : method.run(triplet.observations, options.seed + frame)) {
             records_of_triplet[t].push_back(

@@ -14,6 +14,7 @@
 #include "kitti_report.h"
 #include "kitti_sequence.h"
 #include "sift_features.h"
+#include "track_mistakes.h"
 #include "triplet_source.h"
 
 namespace trigrav::kitti {
@@ -26,6 +27,7 @@ struct SequenceEvaluationOptions {
   MatchOptions match;
   double imu_noise_deg = 0.0;  // sigma of each frame's pitch and roll error (ImuGravityInCameras)
   std::uint64_t seed = 1;      // IMU noise; triplet f's RANSAC seed is seed + f
+  TrackMistake mistake = TrackMistake::kNone;  // applied to every triplet's observations
   int threads = 2;
   bool show_progress = true;  // "\r<stage> done/total" on stderr
 };

@@ -14,11 +14,13 @@ namespace internal {
 
 // Runs the five-point method (through the same RANSAC, with `ransac`) on the triplets and, if it
 // succeeds, measures its rotations against the gravity of `data` and against `gravity_aware`
-// (compared only when `has_gravity_aware_pose`).
+// (compared only when `has_gravity_aware_pose`). The gravity-free estimate itself goes to
+// `gravity_free` when not null.
 GravityConsistency MeasureGravityConsistency(const TripletData& data,
                                              const RansacOptions& ransac,
                                              const ThreeViewPose& gravity_aware,
-                                             bool has_gravity_aware_pose);
+                                             bool has_gravity_aware_pose,
+                                             RobustThreeViewEstimate* gravity_free = nullptr);
 
 }  // namespace internal
 }  // namespace trigrav

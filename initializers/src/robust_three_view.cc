@@ -7,7 +7,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "parallax_check.h"
 #include "robust_estimator.h"
 #include "robust_methods.h"
 #include "robust_triplet_data.h"
@@ -27,33 +26,38 @@ using internal::Run;
 using internal::TiltCorrectingRefinement;
 using internal::TripletData;
 
+// The gravity-free estimate's own tilt error on exact gravity stays below it (derivations.md 7.6).
+constexpr double kExactGravityInconsistencyDeg = 1.0;
+
 using RunFunction = RobustThreeViewEstimate (*)(const TripletData&, const RansacOptions&);
 
 struct SolverInfo {
   InitialSolver solver;
   const char* name;
   int sample_size;
+  int max_models_per_sample;  // the most models the minimal solver gives (the headers)
   bool uses_gravity;
   RunFunction run;
   RunFunction run_tilt_correcting;  // == run for the methods that do not use gravity
 };
 
 template <typename M>
-constexpr SolverInfo MakeSolverInfo(InitialSolver solver, const char* name) {
+constexpr SolverInfo MakeSolverInfo(InitialSolver solver, const char* name, int max_models) {
   if constexpr (M::kAligned) {
-    return {solver, name, M::kSampleSize, true, &Run<M>, &Run<TiltCorrectingRefinement<M>>};
+    return {
+        solver, name, M::kSampleSize, max_models, true, &Run<M>, &Run<TiltCorrectingRefinement<M>>};
   } else {
-    return {solver, name, M::kSampleSize, false, &Run<M>, &Run<M>};
+    return {solver, name, M::kSampleSize, max_models, false, &Run<M>, &Run<M>};
   }
 }
 
 constexpr std::array<SolverInfo, 6> kSolvers = {{
-    MakeSolverInfo<Method3pt>(InitialSolver::kTrifocal3pt, "3pt"),
-    MakeSolverInfo<Method3ptSextic>(InitialSolver::kTrifocal3ptSextic, "3pt-sextic"),
-    MakeSolverInfo<Method4pt>(InitialSolver::kTrifocal4pt, "4pt"),
-    MakeSolverInfo<Method7ptLinear>(InitialSolver::kTrifocalLinear, "7pt-linear"),
-    MakeSolverInfo<Method5pt>(InitialSolver::kEssential5pt, "5pt"),
-    MakeSolverInfo<Method8pt>(InitialSolver::kEssential8pt, "8pt"),
+    MakeSolverInfo<Method3pt>(InitialSolver::kTrifocal3pt, "3pt", 16),
+    MakeSolverInfo<Method3ptSextic>(InitialSolver::kTrifocal3ptSextic, "3pt-sextic", 6),
+    MakeSolverInfo<Method4pt>(InitialSolver::kTrifocal4pt, "4pt", 1),
+    MakeSolverInfo<Method7ptLinear>(InitialSolver::kTrifocalLinear, "7pt-linear", 1),
+    MakeSolverInfo<Method5pt>(InitialSolver::kEssential5pt, "5pt", 100),  // 10 per pair
+    MakeSolverInfo<Method8pt>(InitialSolver::kEssential8pt, "8pt", 1),
 }};
 
 constexpr bool TableFollowsInitialSolverList() {
@@ -74,6 +78,36 @@ const SolverInfo& Info(InitialSolver solver) {
 }  // namespace
 
 const char* InitialSolverName(InitialSolver solver) { return Info(solver).name; }
+
+const char* FailureCauseName(FailureCause cause) {
+  switch (cause) {
+    case FailureCause::kNone:
+      return "none";
+    case FailureCause::kTooFewTriplets:
+      return "too-few-triplets";
+    case FailureCause::kBelowInlierFloor:
+      return "below-inlier-floor";
+    case FailureCause::kTooFewInliers:
+      return "too-few-inliers";
+    case FailureCause::kChanceConsensus:
+      return "chance-consensus";
+    case FailureCause::kUncertainPose:
+      return "uncertain-pose";
+    case FailureCause::kNoParallax:
+      return "no-parallax";
+    case FailureCause::kPixelsVsIntrinsics:
+      return "pixels-vs-intrinsics";
+    case FailureCause::kViewsOutOfOrder:
+      return "views-out-of-order";
+    case FailureCause::kCameraGravity:
+      return "camera-gravity";
+    case FailureCause::kNoisyGravity:
+      return "noisy-gravity";
+    case FailureCause::kOtherMotion:
+      return "other-motion";
+  }
+  throw std::invalid_argument("trigrav: unknown FailureCause value");
+}
 
 int MinimalSampleSize(InitialSolver solver) { return Info(solver).sample_size; }
 
@@ -98,6 +132,13 @@ void RobustThreeViewOptions::Check() const {
     throw std::invalid_argument(
         "trigrav: RobustThreeViewOptions: max_gravity_inconsistency_deg must be > 0 or "
         "kGravityConsistencyFromGravitySigma");
+  }
+  if (min_inliers < 0) {
+    throw std::invalid_argument("trigrav: RobustThreeViewOptions: min_inliers must be >= 0");
+  }
+  if (!(max_pose_sigma_deg > 0.0)) {
+    throw std::invalid_argument(
+        "trigrav: RobustThreeViewOptions: max_pose_sigma_deg must be > 0 (+infinity: no test)");
   }
   if (!(max_tilt_correction_deg == kTiltCorrectionFromGravitySigma ||
         (max_tilt_correction_deg >= 0.0 && max_tilt_correction_deg < 90.0))) {
@@ -133,15 +174,20 @@ RobustThreeViewEstimate EstimateThreeViewPoseRobust(const ThreeViewObservations&
   RansacOptions ransac = options.ransac;
   ransac.max_error = options.InlierThreshold(observations);
   RobustThreeViewEstimate estimate = run(data, ransac);
-  // Without a gravity sigma the automatic bound means no check (header).
-  const double max_gravity_inconsistency_deg =
+  internal::VerdictSettings verdict;
+  verdict.sample_size = info.sample_size;
+  verdict.max_models_per_sample = info.max_models_per_sample;
+  verdict.uses_gravity = info.uses_gravity;
+  verdict.tilt_correcting = max_tilt_correction_deg > 0.0;
+  // Without a gravity sigma the upright models take the gravity as exact (header).
+  verdict.max_gravity_inconsistency_deg =
       options.max_gravity_inconsistency_deg == options.kGravityConsistencyFromGravitySigma
-          ? std::numeric_limits<double>::infinity()
+          ? kExactGravityInconsistencyDeg
           : options.max_gravity_inconsistency_deg;
-  internal::JudgeEstimate(data, ransac, info.sample_size, info.uses_gravity,
-                          max_gravity_inconsistency_deg, options.check_gravity_after_success,
-                          &estimate);
-  if (estimate.success) internal::RejectWithoutParallax(data, ransac.max_error, &estimate);
+  verdict.check_gravity_after_success = options.check_gravity_after_success;
+  verdict.max_pose_sigma_deg = options.max_pose_sigma_deg;
+  verdict.min_inliers = options.min_inliers;
+  internal::JudgeEstimate(data, observations, ransac, verdict, &estimate);
   return estimate;
 }
 

@@ -1,12 +1,16 @@
 #include "verdict.h"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
+#include "consensus_evidence.h"
 #include "gravity_consistency.h"
+#include "parallax_check.h"
 
 namespace trigrav {
 namespace internal {
@@ -24,17 +28,38 @@ std::string Format(const char* format, Args... args) {
 // from another frame.
 constexpr double kFlippedDeg = 135.0;
 
-constexpr const char* kImageCauses =
-    "intrinsics that do not match the pixels (another image resolution, pixels as (row, column)), "
-    "views out of order, or triplets that are not matches";
+// Triplets a gravity-free model must explain beyond the gravity-aware one's to count as clearly
+// more after a success (section 7.7): 5 % of n, at least 3. Its 4 more degrees of freedom let it
+// take in a few more triplets near the threshold on right data.
+int ClearMargin(int n) { return std::max(3, static_cast<int>(std::ceil(0.05 * n))); }
 
-// What the gravity-free estimate says against the gravity, "" when the gravity is consistent or
-// the comparison is not conclusive (the gravity-free estimate explains no more triplets).
-std::string GravityDiagnosis(double bound, int gravity_aware_inliers, GravityConsistency* g) {
-  if (!g->measured || g->num_inliers <= gravity_aware_inliers) return "";
+// A success's centre directions may differ at least this much from a gravity-free estimate that
+// explains more triplets (section 7.7): beyond it, one of the two is far off.
+constexpr double kMaxDirectionDisagreementDeg = 5.0;
+
+// How far the two estimates' rotations and centre directions may differ (deg) before a success
+// is refused.
+struct DisagreementBound {
+  double rotation_deg = 0.0;
+  double direction_deg = 0.0;
+};
+
+struct Diagnosis {
+  FailureCause cause = FailureCause::kNone;
+  std::string message;  // "" when there is nothing to object to
+};
+
+// The likely cause when a gravity-free estimate explains more triplets than the gravity-aware one
+// (section 7.7), cause first; no message when the comparison did not run or favours the gravity.
+Diagnosis GravityDiagnosis(const VerdictSettings& settings,
+                           int gravity_aware_inliers,
+                           bool gravity_aware_succeeded,
+                           const DisagreementBound& disagreement,
+                           GravityConsistency* g) {
+  if (!g->measured || g->num_inliers <= gravity_aware_inliers) return {};
+  const double bound = settings.max_gravity_inconsistency_deg;
   const std::array<double, 3>& angle = g->pair_inconsistency_deg;
-  // Pairs (1,2), (1,3), (2,3); the camera a pair lacks is 3, 2, 1.
-  const std::array<int, 3> other_camera = {3, 2, 1};
+  const std::array<int, 3> other_camera = {3, 2, 1};  // the camera pair (1,2), (1,3), (2,3) lacks
   int num_off = 0, consistent_pair = -1;
   for (int p = 0; p < 3; ++p) {
     if (angle[p] > bound) {
@@ -43,119 +68,260 @@ std::string GravityDiagnosis(double bound, int gravity_aware_inliers, GravityCon
       consistent_pair = p;
     }
   }
-  const std::string figures = Format(
-      " (pairs 1-2, 1-3, 2-3: %.1f, %.1f, %.1f deg; a gravity-free estimate explains %d "
-      "triplets, the gravity-aware one %d)",
-      angle[0], angle[1], angle[2], g->num_inliers, gravity_aware_inliers);
+  const std::string counts =
+      Format(" (%d vs %d triplets fit)", g->num_inliers, gravity_aware_inliers);
+  const std::array<double, 2>& swapped = g->swapped_pair_inconsistency_deg;
+  if (num_off > 0 && swapped[0] <= bound && swapped[1] <= bound) {
+    return {FailureCause::kViewsOutOfOrder,
+            "views 2 and 3 out of order: each one's gravity fits the other's images; swap their "
+            "pixels" +
+                counts};
+  }
   if (num_off == 2) {
-    const int camera = other_camera[consistent_pair];  // in both inconsistent pairs
+    const int camera = other_camera[consistent_pair];
     g->inconsistent_camera = camera;
     double off = 0.0;
     for (int p = 0; p < 3; ++p) off = p == consistent_pair ? off : std::max(off, angle[p]);
-    return Format("gravity of camera %d is %.1f deg off the images: ", camera, off) +
-           (off > kFlippedDeg ? "wrong sign?"
-                              : "not in this camera's frame (the world's or another camera's "
-                                "vertical, or mapped with the rotation's transpose)?") +
-           figures;
+    if (off > kFlippedDeg) {
+      return {FailureCause::kCameraGravity,
+              Format("gravity of camera %d has the wrong sign (%.0f deg off the images): negate it",
+                     camera, off) +
+                  counts};
+    }
+    return {FailureCause::kCameraGravity,
+            Format("gravity of camera %d is %.1f deg off the images: not in this camera's frame? "
+                   "Give its down vector in camera coordinates",
+                   camera, off) +
+                counts};
   }
   if (num_off == 3) {
-    return "every camera's gravity disagrees with the images: the world's vertical given for "
-           "every camera, gravity mapped with the rotation's transpose, or views out of order?" +
-           figures;
+    return {FailureCause::kCameraGravity,
+            Format("every camera's gravity is off the images (%.1f, %.1f, %.1f deg): world "
+                   "vertical or rotation transposed? Give each camera's own down vector",
+                   angle[0], angle[1], angle[2]) +
+                counts};
   }
   if (num_off == 1) {
     const int p = angle[0] > bound ? 0 : angle[1] > bound ? 1 : 2;
     const int a = p == 2 ? 2 : 1, b = p == 0 ? 2 : 3;  // the pair's cameras
-    return Format(
-               "the gravities of cameras %d and %d disagree with the images by %.1f deg: one "
-               "of them wrong?",
-               a, b, angle[p]) +
-           figures;
+    return {FailureCause::kCameraGravity,
+            Format("gravities of cameras %d and %d disagree with the images by %.1f deg: one of "
+                   "them wrong?",
+                   a, b, angle[p]) +
+                counts};
   }
   const std::array<double, 2>& rotation = g->rotation_disagreement_deg;
-  const int view = rotation[1] > rotation[0] ? 3 : 2;
-  const double disagreement = std::max(rotation[0], rotation[1]);
-  if (!(disagreement > bound)) return "";
-  return Format(
-             "the gravity-aware pose differs from a gravity-free one by %.1f deg in view %d "
-             "although the gravity agrees with the images within %.1f deg: the gravity is "
-             "less accurate than the rotation model assumes (use the gravity-prior model, a "
-             "larger gravity_sigma_deg or max_tilt_correction_deg)?",
-             disagreement, view, bound) +
-         figures;
+  const std::array<double, 2>& direction = g->direction_disagreement_deg;
+  if (std::max(rotation[0], rotation[1]) > disagreement.rotation_deg ||
+      std::max(direction[0], direction[1]) > disagreement.direction_deg) {
+    // The gravity agrees with the images, yet the gravity-aware search settled on another motion.
+    return {FailureCause::kOtherMotion,
+            "the images favour another motion: views out of order, or intrinsics that do not "
+            "match the pixels (resolution, (row, column))?" +
+                counts};
+  }
+  // The same motion within the bounds: on a success, nothing to object to; on a failure, the
+  // gravity-aware model lost triplets: the tilt is noisier than it allows.
+  if (gravity_aware_succeeded) return {};
+  const double tilt = std::max({angle[0], angle[1], angle[2]});
+  if (settings.tilt_correcting) {
+    return {FailureCause::kNoisyGravity,
+            Format("gravity noisier than the tilt correction allows (%.2f deg): raise "
+                   "ransac.max_error (rule in robust_three_view.h)",
+                   tilt) +
+                counts};
+  }
+  return {FailureCause::kNoisyGravity,
+          Format("gravity noisier than the yaw-only model allows (%.2f deg): use the "
+                 "gravity-prior model with gravity_sigma_deg of the IMU",
+                 tilt) +
+              counts};
+}
+
+// Runs the gravity-free comparison with at most the samples that find a model of
+// `target_inliers` with the confidence (section 7.7); false if the comparison cannot be won.
+bool CompareWithGravityFree(const TripletData& data,
+                            const RansacOptions& ransac,
+                            int target_inliers,
+                            RobustThreeViewEstimate* estimate,
+                            RobustThreeViewEstimate* gravity_free) {
+  const double n = static_cast<double>(data.error.size());
+  if (target_inliers >= n) return false;
+  RansacOptions free = ransac;
+  free.min_inlier_ratio = target_inliers / n;
+  free.min_iterations = 0;
+  estimate->gravity =
+      MeasureGravityConsistency(data, free, estimate->pose, estimate->success, gravity_free);
+  return true;
+}
+
+// Pixels that the intrinsics cannot have produced (section 7.7): in some view, pixels beyond the
+// image the principal point implies (0 to 2 c, with a fifth of it as margin for a principal point
+// off the image centre), or a principal point
+// in a corner of the pixels' bounding box (in its outer tenth, or beyond, along both axes, as
+// pixels of a downscaled image put it; with at least kMinTripletsForCentre triplets). Returns the
+// message, "" when the pixels fit.
+constexpr std::size_t kMinTripletsForCentre = 50;
+std::string PixelsAgainstIntrinsics(const ThreeViewObservations& observations) {
+  if (observations.HasBearings()) return "";
+  for (int k = 0; k < 3; ++k) {
+    const std::vector<Eigen::Vector2d>& pixels = observations.pixels[k];
+    if (pixels.empty()) continue;
+    Eigen::Vector2d low = pixels.front(), high = pixels.front();
+    for (const Eigen::Vector2d& pixel : pixels) {
+      low = low.cwiseMin(pixel);
+      high = high.cwiseMax(pixel);
+    }
+    // The principal point: the pixel of the optical axis.
+    const Eigen::Vector2d centre = observations.cameras[k].Project(Eigen::Vector3d::UnitZ());
+    const Eigen::Vector2d image = 2.0 * centre;
+    const bool beyond =
+        (low.array() < -0.5 * image.array()).any() || (high.array() > 1.5 * image.array()).any();
+    const Eigen::Vector2d middle_low = low + 0.1 * (high - low);
+    const Eigen::Vector2d middle_high = high - 0.1 * (high - low);
+    const bool off_centre =
+        pixels.size() >= kMinTripletsForCentre &&
+        ((centre.array() < middle_low.array()) || (centre.array() > middle_high.array())).all();
+    if (beyond || off_centre) {
+      return Format(
+          "pixels of view %d span %.0f-%.0f x %.0f-%.0f px, not the %.0f x %.0f image "
+          "of its principal point: another camera's intrinsics, a resized image or "
+          "(row, column) pixels?",
+          k + 1, low.x(), high.x(), low.y(), high.y(), image.x(), image.y());
+    }
+  }
+  return "";
+}
+
+void Fail(FailureCause cause, const std::string& message, RobustThreeViewEstimate* estimate) {
+  estimate->success = false;
+  estimate->cause = cause;
+  estimate->message = message;
+  estimate->pose = ThreeViewPose();
+  estimate->inliers.clear();
 }
 
 }  // namespace
 
 void JudgeEstimate(const TripletData& data,
+                   const ThreeViewObservations& observations,
                    const RansacOptions& ransac,
-                   int sample_size,
-                   bool uses_gravity,
-                   double max_gravity_inconsistency_deg,
-                   bool check_gravity_after_success,
+                   const VerdictSettings& settings,
                    RobustThreeViewEstimate* estimate) {
+  const int n = static_cast<int>(data.error.size());
+  const int k = estimate->ransac.num_inliers;
   // RANSAC that drew samples fails only when no model reaches the floor (or a minimal sample).
-  const bool below_floor =
-      !estimate->success && data.error.size() >= static_cast<std::size_t>(sample_size);
-  if (!estimate->success && !below_floor) return;
-  const bool check_gravity = uses_gravity && std::isfinite(max_gravity_inconsistency_deg) &&
-                             (below_floor || check_gravity_after_success);
-  if (check_gravity) {
-    // At most the samples the gravity-aware method's floor needs: enough for the gravity-free
-    // models that explain most triplets, the ones that show a gravity mistake.
-    RansacOptions free = ransac;
-    if (ransac.min_inlier_ratio > 0.0) {
-      free.max_iterations = std::min(
-          ransac.max_iterations,
-          std::max(ransac.min_iterations,
-                   RequiredIterations(ransac.min_inlier_ratio, sample_size, ransac.confidence)));
-      free.min_iterations = std::min(free.min_iterations, free.max_iterations);
-    }
-    estimate->gravity = MeasureGravityConsistency(data, free, estimate->pose, estimate->success);
-  }
-  const std::string diagnosis =
-      check_gravity ? GravityDiagnosis(max_gravity_inconsistency_deg, estimate->ransac.num_inliers,
-                                       &estimate->gravity)
-                    : "";
-  if (below_floor) {
-    const double n = static_cast<double>(data.error.size());
-    // The gravity diagnosis first when there is one; wrong images also distort the gravity-free
-    // rotations, so their causes stay listed.
-    std::string causes;
-    if (!diagnosis.empty()) {
-      causes = diagnosis + "; otherwise " + kImageCauses;
-    } else {
-      causes = uses_gravity ? "likely causes: wrong gravity (sign, frame, the rotation's "
-                              "transpose), " +
-                                  std::string(kImageCauses)
-                            : "likely causes: " + std::string(kImageCauses);
-      if (estimate->gravity.measured) {
-        const std::array<double, 3>& angle = estimate->gravity.pair_inconsistency_deg;
-        causes += Format(
-            "; a gravity-free estimate explains %d triplets and agrees with the gravity within "
-            "%.1f deg (pairs 1-2, 1-3, 2-3: %.1f, %.1f, %.1f deg): if that is many, the gravity "
-            "is less accurate than the rotation model assumes (use the gravity-prior model, a "
-            "larger gravity_sigma_deg)",
-            estimate->gravity.num_inliers, max_gravity_inconsistency_deg, angle[0], angle[1],
-            angle[2]);
-      } else if (check_gravity) {
-        causes += " (no gravity-free model reaches the floor either)";
-      }
-    }
-    estimate->message =
-        Format(
-            "only %d of %.0f triplets (%.1f %%) fit one model (ransac.min_inlier_ratio: "
-            "%.1f %%): ",
-            estimate->ransac.num_inliers, n, 100.0 * estimate->ransac.num_inliers / n,
-            100.0 * ransac.min_inlier_ratio) +
-        causes;
+  const bool below_floor = !estimate->success && n >= settings.sample_size;
+  if (!estimate->success && !below_floor) {
+    estimate->cause = FailureCause::kTooFewTriplets;
     return;
   }
-  if (diagnosis.empty()) return;
-  estimate->success = false;
-  estimate->message = diagnosis;
-  estimate->pose = ThreeViewPose();
-  estimate->inliers.clear();
+  // Could the intrinsics have produced these pixels? The likeliest cause when they could not.
+  const std::string mismatch = PixelsAgainstIntrinsics(observations);
+  if (!mismatch.empty()) {
+    Fail(FailureCause::kPixelsVsIntrinsics, mismatch, estimate);
+    return;
+  }
+  const bool compare_gravity =
+      settings.uses_gravity && std::isfinite(settings.max_gravity_inconsistency_deg);
+
+  if (below_floor) {
+    if (compare_gravity) {
+      // At most the samples the gravity-aware method's floor needs: enough for the gravity-free
+      // models that explain most triplets, the ones that show a gravity mistake.
+      RansacOptions free = ransac;
+      if (ransac.min_inlier_ratio > 0.0) {
+        free.max_iterations =
+            std::min(ransac.max_iterations,
+                     std::max(ransac.min_iterations,
+                              RequiredIterations(ransac.min_inlier_ratio, settings.sample_size,
+                                                 ransac.confidence)));
+        free.min_iterations = std::min(free.min_iterations, free.max_iterations);
+      }
+      estimate->gravity = MeasureGravityConsistency(data, free, estimate->pose, false);
+    }
+    const Diagnosis diagnosis = GravityDiagnosis(
+        settings, k, false, {settings.max_gravity_inconsistency_deg, kMaxDirectionDisagreementDeg},
+        &estimate->gravity);
+    const std::string cause =
+        !diagnosis.message.empty() ? diagnosis.message
+        : settings.uses_gravity
+            ? "wrong intrinsics, (row, column) pixels, views out of order, gravity or matches?"
+            : "wrong intrinsics, (row, column) pixels, views out of order or matches?";
+    estimate->cause = diagnosis.message.empty() ? FailureCause::kBelowInlierFloor : diagnosis.cause;
+    estimate->message = Format("%d of %d triplets fit: ", k, n) + cause;
+    return;
+  }
+
+  // 1. Are there enough inliers to judge by?
+  if (k < settings.min_inliers) {
+    Fail(FailureCause::kTooFewInliers,
+         Format("only %d triplets fit (min_inliers %d): too few to judge a pose by; give more "
+                "tracks",
+                k, settings.min_inliers),
+         estimate);
+    return;
+  }
+  // 2. Could chance explain the consensus? (number of false alarms, section 7.7)
+  const double alpha = ChanceFitProbability(observations, ransac.max_error);
+  estimate->evidence.log10_nfa =
+      Log10NumberOfFalseAlarms(n, k, settings.sample_size, settings.max_models_per_sample, alpha);
+  if (!(estimate->evidence.log10_nfa < 0.0)) {
+    Fail(FailureCause::kChanceConsensus,
+         Format("%d of %d triplets fit as well by chance (NFA 10^%.1f): too few triplets; give "
+                "more tracks",
+                k, n, estimate->evidence.log10_nfa),
+         estimate);
+    return;
+  }
+  // 3. Is camera 2's centre, which sets the scale, observable? (robust_three_view.h)
+  RejectWithoutParallax(data, ransac.max_error, estimate);
+  if (!estimate->success) {
+    estimate->cause = FailureCause::kNoParallax;
+    return;
+  }
+  // 4. Do the inliers pin the pose down? (predicted precision at sigma = threshold / 3)
+  const std::array<double, 3> units = ThresholdUnitsPerRadian(observations);
+  const PosePrecision precision =
+      PredictPosePrecision(data, estimate->pose, estimate->inliers, units, ransac.max_error / 3.0,
+                           settings.uses_gravity && !settings.tilt_correcting);
+  estimate->evidence.rotation_sigma_deg =
+      precision.determined ? precision.rotation_sigma_deg : HUGE_VAL;
+  estimate->evidence.direction_sigma_deg =
+      precision.determined ? precision.direction_sigma_deg : HUGE_VAL;
+  const double sigma =
+      std::max(estimate->evidence.rotation_sigma_deg, estimate->evidence.direction_sigma_deg);
+  if (!(sigma <= settings.max_pose_sigma_deg)) {
+    Fail(FailureCause::kUncertainPose,
+         Format("%d triplets leave the pose uncertain (predicted sigma %.2g deg > "
+                "max_pose_sigma_deg %.2g): too few or short tracks, or too little baseline",
+                k, sigma, settings.max_pose_sigma_deg),
+         estimate);
+    return;
+  }
+  // 5. Does a gravity-free model explain clearly more triplets? Its search needs only the samples
+  // that find such a model, none when the gravity-aware one leaves fewer than the margin.
+  if (!compare_gravity || !settings.check_gravity_after_success) return;
+  const int target = k + ClearMargin(n);
+  RobustThreeViewEstimate free;
+  if (!CompareWithGravityFree(data, ransac, target, estimate, &free)) return;
+  if (!estimate->gravity.measured || estimate->gravity.num_inliers < target) return;
+  // The two estimates disagree when they differ by more than 3 standard deviations of their
+  // difference (each predicted as in step 4, the gravity-free one with free rotations), and more
+  // than the bounds.
+  const PosePrecision free_precision = PredictPosePrecision(
+      data, free.pose, free.inliers, units, ransac.max_error / 3.0, /*yaw_only=*/false);
+  const double free_rotation_sigma =
+      free_precision.determined ? free_precision.rotation_sigma_deg : HUGE_VAL;
+  const double free_direction_sigma =
+      free_precision.determined ? free_precision.direction_sigma_deg : HUGE_VAL;
+  const DisagreementBound disagreement = {
+      std::max(settings.max_gravity_inconsistency_deg,
+               3.0 * std::hypot(estimate->evidence.rotation_sigma_deg, free_rotation_sigma)),
+      std::max(kMaxDirectionDisagreementDeg,
+               3.0 * std::hypot(estimate->evidence.direction_sigma_deg, free_direction_sigma))};
+  const Diagnosis diagnosis = GravityDiagnosis(settings, k, true, disagreement, &estimate->gravity);
+  if (!diagnosis.message.empty()) Fail(diagnosis.cause, diagnosis.message, estimate);
 }
 
 }  // namespace internal

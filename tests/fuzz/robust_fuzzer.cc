@@ -53,7 +53,7 @@ RobustThreeViewOptions DecodeOptions(FuzzInput* input) {
   ransac.local_optimization_threshold_multiplier = Choose(input, {1.0, 3.0});
   ransac.min_inlier_ratio = Choose(input, {0.25, 0.0, 0.9});
   options.max_bearing_error_deg = Choose(input, {0.1, 1.0, 1e-6});
-  options.check_gravity_after_success = input->Byte() % 4 == 0;
+  options.check_gravity_after_success = input->Byte() % 4 != 0;
   return options;
 }
 

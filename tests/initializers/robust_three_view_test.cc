@@ -144,8 +144,10 @@ TEST_P(RobustEveryMethod, FloorAndGravityCheckLeaveNormalDataUnchanged) {
       EXPECT_EQ(a.pose.cam2_from_cam1.R, other->pose.cam2_from_cam1.R);
       EXPECT_EQ(a.pose.cam3_from_cam1.t, other->pose.cam3_from_cam1.t);
     }
-    EXPECT_EQ(checked.gravity.measured, UsesGravity(GetParam()));
-    EXPECT_FALSE(a.gravity.measured);  // EstimateThreeViewPoseRobust checks no gravity by default
+    // The gravity-free comparison runs by default, and on right data finds no model explaining
+    // clearly more triplets: nothing measured, the success kept.
+    EXPECT_FALSE(checked.gravity.measured);
+    EXPECT_FALSE(a.gravity.measured);
   }
   RobustThreeViewOptions options;
   for (const double bound : {0.0, -2.0, std::nan("")}) {
@@ -230,6 +232,9 @@ TEST(RobustThreeView, TiltCorrectionKeepsRansacOnTheTrueMotionWithImuGravity) {
   RobustThreeViewOptions options;
   options.ransac.max_error = 1.5;
   options.ransac.min_iterations = 100;
+  // RANSAC's own results: the verdict, which refuses most of the upright gross errors, is off.
+  options.check_gravity_after_success = false;
+  options.max_pose_sigma_deg = std::numeric_limits<double>::infinity();
   int gross_upright = 0, gross_corrected = 0;
   std::vector<double> rotation_corrected;
   for (std::uint64_t seed = 1; seed <= 60; ++seed) {
@@ -267,6 +272,8 @@ TEST(RobustThreeView, TiltCorrectionKeepsRansacOnTheTrueMotionWithImuGravity) {
 TEST(RobustThreeView, TiltCorrectionBelowSevenTripletsIsTheUprightRefinement) {
   RobustThreeViewOptions options;
   options.ransac.max_error = 3.0;
+  options.min_inliers = 0;  // RANSAC's own results on 6 triplets
+  options.max_pose_sigma_deg = std::numeric_limits<double>::infinity();
   int refined = 0;
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
     const ProblemWithOutliers problem = MakeProblem(6, 1.0, 0.0, seed);

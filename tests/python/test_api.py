@@ -55,6 +55,30 @@ def test_initialize_and_refine_result_recovers_the_truth(scene, observations):
     assert estimate.ransac.num_inliers == estimate.initial_inliers.sum()
 
 
+def test_verdict_gives_evidence_and_a_cause(scene, observations):
+    estimate = trigrav.initialize_and_refine(observations)
+    assert estimate.success and estimate.cause == trigrav.FailureCause.NONE
+    assert estimate.evidence.log10_nfa < -50
+    assert 0 < estimate.evidence.rotation_sigma_deg < 0.2
+    assert 0 < estimate.evidence.direction_sigma_deg < 1.25
+    # Views 2 and 3 swapped: refused, with the cause named for a pipeline to act on.
+    swapped = trigrav.ThreeViewObservations(
+        pixels=[scene.pixels[0], scene.pixels[2], scene.pixels[1]], cameras=scene.camera,
+        gravity_in_cam=scene.gravity_in_cam_measured)
+    refused = trigrav.estimate_three_view_pose_robust(swapped)
+    assert not refused.success and refused.cause != trigrav.FailureCause.NONE
+    assert len(refused.message) <= 210, refused.message
+    # Too few triplets for a verdict.
+    few = trigrav.ThreeViewObservations(
+        pixels=[p[:10] for p in scene.pixels], cameras=scene.camera,
+        gravity_in_cam=scene.gravity_in_cam_measured)
+    estimate = trigrav.estimate_three_view_pose_robust(
+        few, trigrav.RobustThreeViewOptions(max_pose_sigma_deg=math.inf))
+    assert not estimate.success
+    assert estimate.cause in (trigrav.FailureCause.TOO_FEW_INLIERS,
+                              trigrav.FailureCause.BELOW_INLIER_FLOOR)
+
+
 def test_dedicated_engine_reaches_the_ceres_optimum(scene, observations):
     def refine(engine):
         options = trigrav.InitializeAndRefineOptions(

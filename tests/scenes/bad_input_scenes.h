@@ -185,7 +185,9 @@ inline Input MakeInput(Geometry geometry, int num_triplets) {
     observations.gravity_in_cam[k] = W[k] * Eigen::Vector3d::UnitY();
   }
 
-  // Points (or directions) in front of all three cameras.
+  // Points (or directions) in front of all three cameras, within what a real 640 x 480 camera
+  // could image (its image and a margin of 100 / 80 px; the verdict refuses pixels beyond a fifth
+  // of the image the principal point implies, robust_three_view.h).
   std::vector<Eigen::Vector3d> points;
   auto in_camera = [&](int k, const Eigen::Vector3d& x) -> Eigen::Vector3d {
     return world.at_infinity ? Eigen::Vector3d(W[k] * x)
@@ -198,6 +200,8 @@ inline Input MakeInput(Geometry geometry, int num_triplets) {
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector3d p = in_camera(k, x);
       in_front = in_front && (world.at_infinity ? p.z() > 0.1 * p.norm() : p.z() > 0.5);
+      const double u = 500.0 * p.x() / p.z() + 320.0, v = 500.0 * p.y() / p.z() + 240.0;
+      in_front = in_front && u > -100.0 && u < 740.0 && v > -80.0 && v < 560.0;
     }
     if (in_front) points.push_back(x);
   }

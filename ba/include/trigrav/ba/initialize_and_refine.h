@@ -55,12 +55,15 @@ struct ThreeViewEstimateTimings {
 struct ThreeViewEstimate {
   bool success = false;
   std::string message;  // why not, when !success; a note when the refinement fell back
+  FailureCause cause = FailureCause::kNone;  // why not, for a pipeline (robust_three_view.h)
   // The RANSAC winner: pose, inliers and statistics (ransac.num_inliers inliers).
   ThreeViewPose initial;
   std::vector<char> initial_inliers;
   RansacStatistics ransac;
   // What the images say about the gravity (robust_three_view.h), also when !success.
   GravityConsistency gravity;
+  // How much the RANSAC winner's consensus says (robust_three_view.h), set when RANSAC succeeded.
+  ConsensusEvidence evidence;
   // The answer: the refined pose, or the initial one when refine is false or the refinement failed.
   ThreeViewPose refined;
   std::vector<char> inliers;  // per triplet: inliers of `refined` (those the last refinement used)
@@ -76,8 +79,9 @@ struct ThreeViewEstimate {
 };
 
 // Throws std::invalid_argument for invalid observations (ThreeViewObservations::Check) or options.
-// Numerical failure (too few triplets, no model, too few inliers, gravity the images contradict;
-// robust_three_view.h) gives success == false with a message. If the
+// success means the evidence supports the pose (EstimateThreeViewPoseRobust's verdict,
+// robust_three_view.h); anything else gives success == false with a message, the likely cause
+// first. If the
 // refinement fails, `refined` is the initial pose and the message says why (success stays true).
 // The returned poses are always finite when success is true.
 ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,

@@ -2,6 +2,7 @@
 #define TRIGRAV_INITIALIZERS_ROBUST_THREE_VIEW_H_
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -57,31 +58,38 @@ struct RobustThreeViewOptions {
   static constexpr double kTiltCorrectionFromGravitySigma = -1.0;
   double max_tilt_correction_deg = kTiltCorrectionFromGravitySigma;
   // Gravity-aware methods only: how far (deg) a camera's gravity may be from what the images say
-  // before the estimate is a failure (derivations.md section 7.6). A gravity-free robust estimate
-  // (5pt, the same threshold, seed and inlier-ratio floor, at most as many samples as the
-  // gravity-aware floor needs) is compared with the gravity: the angle between R_k g_1 and g_k for
-  // the pairs (1,2), (1,3) and between R_3 R_2^T g_2 and g_3 for (2,3), and the rotation between
-  // the two estimates of each view, all go into RobustThreeViewEstimate::gravity. When the
-  // gravity-free estimate explains more triplets than the gravity-aware one, a pair beyond this
-  // bound makes the call fail with a message naming the camera, the angle and the likely cause, and
-  // so does a rotation disagreement beyond it (gravity noisier than the model assumes). +infinity
-  // skips the check and its cost. kGravityConsistencyFromGravitySigma (the default):
-  // InitializeAndRefine uses 4 sqrt(2) bundle_adjustment.gravity_sigma_deg, at least 1 deg (the
-  // relative tilt of two cameras exceeds 4 sqrt(2) sigma with probability 3e-4; the 1 deg covers
-  // the gravity-free estimate's own error); EstimateThreeViewPoseRobust, which knows no sigma,
-  // skips the check. Otherwise throws std::invalid_argument unless > 0.
+  // before the verdict names it (derivations.md sections 7.6-7.7). A gravity-free robust estimate
+  // (5pt through the same RANSAC and threshold) is compared with the gravity: the angle between
+  // R_k g_1 and g_k for the pairs (1,2), (1,3) and between R_3 R_2^T g_2 and g_3 for (2,3), and the
+  // rotation between the two estimates of each view, all go into RobustThreeViewEstimate::gravity.
+  // When the gravity-free estimate explains clearly more triplets than the gravity-aware one, the
+  // call fails; these angles against this bound name the cause (a camera's gravity, every
+  // camera's, gravity noisier than the model, or images that favour another motion).
+  // +infinity skips the comparison and its cost. kGravityConsistencyFromGravitySigma (the
+  // default): InitializeAndRefine uses 4 sqrt(2) bundle_adjustment.gravity_sigma_deg, at least
+  // 1 deg (the relative tilt of two cameras exceeds 4 sqrt(2) sigma with probability 3e-4; the
+  // 1 deg covers the gravity-free estimate's own error); EstimateThreeViewPoseRobust, whose
+  // upright models take the gravity as exact, uses 1 deg. Otherwise throws std::invalid_argument
+  // unless > 0.
   static constexpr double kGravityConsistencyFromGravitySigma = -1.0;
   double max_gravity_inconsistency_deg = kGravityConsistencyFromGravitySigma;
-  // When the gravity check runs: false (the default), only when the gravity-aware estimate fails
-  // (below the floor), to name the cause; true, also after a success, which can then turn into a
-  // failure. The gravity-free estimate is dearer than the gravity-aware RANSAC (verdict_matrix, 600
-  // synthetic triplets: 36 instead of 21 ms per InitializeAndRefine call; KITTI 00, 3pt raw: 85
-  // instead of 8 ms per triplet), so it is off by default and results after a success are those
-  // of the gravity-aware estimate alone. On: 0 of 30 correct synthetic inputs and, on KITTI 00 and
-  // 02 with exact gravity, 1 of 596 triplets rejected (frame 267 of 00, whose 3pt pose was 25-30
-  // deg off in translation, the five-point one 1 deg; with the gravity-prior model also frame
-  // 266, 58 deg off); turn it on where a wrong pose costs more than the time.
-  bool check_gravity_after_success = false;
+  // Whether the gravity-free comparison also runs after a success (it always runs after a failure,
+  // to name the cause). It needs only the samples that would find a gravity-free model explaining
+  // clearly more triplets (3 binomial standard deviations, at least 2 %), few when the
+  // gravity-aware model explains most: its cost on correct data is in the README's robustness
+  // section. false trusts the gravity: a wrong or noisy gravity can then return a wrong pose as a
+  // success.
+  bool check_gravity_after_success = true;
+  // The largest standard deviation (deg) of the rotations and of the centres' directions that the
+  // winner's inliers may leave at a noise of ransac.max_error / 3 (the Gauss-Newton prediction,
+  // derivations.md section 7.7) for a success. Rule behind the default: a 2D error of Rayleigh
+  // scale sigma exceeds 5 deg with probability exp(-12.5 / sigma^2), 4e-4 at 1.25 deg; every
+  // correct KITTI 00 / 02 triplet predicts below it (README, robustness). +infinity: no test.
+  double max_pose_sigma_deg = 1.25;
+  // The fewest inliers a success may have. Rule behind the default: COLMAP's minimum for a
+  // two-view geometry (15); with fewer, the predicted precision itself is unreliable (KITTI with 5
+  // tracks: successes 30-170 deg off at a predicted 0.2-1.1 deg; README, robustness).
+  int min_inliers = 15;
 
   // Throws std::invalid_argument naming the first bad field.
   void Check() const;
@@ -99,29 +107,69 @@ struct GravityConsistency {
   int num_inliers = 0;    // of the gravity-free estimate
   // Pairs (1,2), (1,3), (2,3): angle(R_2 g_1, g_2), angle(R_3 g_1, g_3), angle(R_3 R_2^T g_2, g_3).
   std::array<double, 3> pair_inconsistency_deg{};
+  // Pairs (1,2), (1,3) with the gravities of views 2 and 3 exchanged: angle(R_2 g_1, g_3),
+  // angle(R_3 g_1, g_2); both small while the pairs above are not: views 2 and 3 out of order.
+  std::array<double, 2> swapped_pair_inconsistency_deg{};
   // Views 2 and 3: angle of the rotation between the gravity-aware and the gravity-free
   // cam_k_from_cam1; 0 when the gravity-aware estimate failed.
   std::array<double, 2> rotation_disagreement_deg{};
+  // Views 2 and 3: angle between the two estimates' directions of the camera centre C_k / |C_k|;
+  // 0 when the gravity-aware estimate failed.
+  std::array<double, 2> direction_disagreement_deg{};
   // The camera (1, 2 or 3) that appears in the two pairs beyond the bound when the third is within
   // it; 0 when no pair is beyond it or the pattern names no single camera.
   int inconsistent_camera = 0;
 };
 
+// Why an estimate is not a success, for a pipeline to act on (the message says it in words).
+enum class FailureCause {
+  kNone,                // a success
+  kTooFewTriplets,      // fewer triplets than the minimal sample, or no model at all
+  kBelowInlierFloor,    // no model explains ransac.min_inlier_ratio of the triplets
+  kTooFewInliers,       // fewer inliers than min_inliers
+  kChanceConsensus,     // as many inliers would fit by chance (number of false alarms >= 1)
+  kUncertainPose,       // the inliers leave the pose uncertain (max_pose_sigma_deg)
+  kNoParallax,          // camera 2's centre, which sets the scale, is not observable
+  kPixelsVsIntrinsics,  // pixels the intrinsics cannot produce: another camera, a resized
+                        // image, (row, column) pixels
+  kViewsOutOfOrder,     // views 2 and 3 swapped: each one's gravity fits the other's images
+  kCameraGravity,       // one or more cameras' gravity contradicts the images
+  kNoisyGravity,        // the gravity is noisier than the rotation model allows
+  kOtherMotion,         // a gravity-free model explains more and disagrees: intrinsics or order
+};
+const char* FailureCauseName(FailureCause cause);
+
+// How much the winner's consensus says (derivations.md section 7.7); set after RANSAC succeeds.
+struct ConsensusEvidence {
+  // log10 of the number of false alarms: how many consensuses as large would arise by chance among
+  // uniformly random triplets; a success needs it below 0.
+  double log10_nfa = std::numeric_limits<double>::infinity();
+  // Predicted standard deviations of the pose at a noise of the threshold / 3 (deg).
+  double rotation_sigma_deg = std::numeric_limits<double>::infinity();
+  double direction_sigma_deg = std::numeric_limits<double>::infinity();
+};
+
 struct RobustThreeViewEstimate {
   bool success = false;
-  std::string message;        // why not, when !success
+  std::string message;  // why not, when !success
+  FailureCause cause = FailureCause::kNone;
   ThreeViewPose pose;         // original camera frames, |cam2_from_cam1.Center()| = 1
   std::vector<char> inliers;  // per triplet; ransac.num_inliers of them are set
   RansacStatistics ransac;
   GravityConsistency gravity;
+  ConsensusEvidence evidence;
 };
 
 // Robust three-view relative pose from pixel triplets with outliers: RANSAC (ransac.h) over the
 // chosen minimal solver, every method scored by the same three-view reprojection error in pixels
 // (three_view_error.h). Gravity is used by the gravity-aware methods only. Throws
-// std::invalid_argument for invalid observations or options; numerical failure (too few triplets,
-// no model, a best model below ransac.min_inlier_ratio, with the likely causes in the message, or
-// gravity the images contradict) gives success == false with a message. So do data without parallax
+// std::invalid_argument for invalid observations or options. A success means the evidence supports
+// the pose (derivations.md section 7.7): its inliers could not fit by chance (number of false
+// alarms below 1), they pin the pose down (max_pose_sigma_deg), and no gravity-free model explains
+// clearly more triplets (check_gravity_after_success). Anything else (too few triplets, no model, a
+// best model below ransac.min_inlier_ratio, a consensus chance explains, an uncertain pose, gravity
+// or images the other model contradicts) gives success == false with a message of about 200
+// characters, the likely cause first and a remedy. So do data without parallax
 // between views 1 and 2: if a pure rotation of camera 2 (the best one for the winner's inliers, no
 // baseline) puts more than 80 % of those inliers within ransac.max_error pixels, camera 2's centre,
 // which sets the scale |C2| = 1, is not observable (zero baseline, pure rotation, points at

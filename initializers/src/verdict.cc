@@ -126,8 +126,8 @@ Diagnosis GravityDiagnosis(const VerdictSettings& settings,
   const double tilt = std::max({angle[0], angle[1], angle[2]});
   if (settings.tilt_correcting) {
     return {FailureCause::kNoisyGravity,
-            Format("gravity noisier than the tilt correction allows (%.2f deg): raise "
-                   "ransac.max_error (rule in robust_three_view.h)",
+            Format("gravity noisier than the tilt correction allows (%.2f deg): set "
+                   "gravity_sigma_deg (max_tilt_correction_deg) to the IMU's",
                    tilt) +
                 counts};
   }

@@ -84,4 +84,17 @@ if(TARGET kitti_triplets)
       -P ${CMAKE_CURRENT_LIST_DIR}/check_kitti_triplets.cmake)
   set_tests_properties(kitti_real_data PROPERTIES TIMEOUT 600
     SKIP_REGULAR_EXPRESSION "kitti_triplets test skipped")
+
+  # The mistakes matrix on real tracks: every triplet of 00 and 02 with each input mistake and with
+  # IMU noise, against the verdict's guarantees (check_kitti_mistakes.py; README, robustness).
+  find_program(TRIGRAV_SYSTEM_PYTHON3 NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
+  find_program(TRIGRAV_SYSTEM_PYTHON3 NAMES python3)
+  if(TRIGRAV_SYSTEM_PYTHON3)
+    add_test(NAME kitti_mistakes_matrix
+      COMMAND ${TRIGRAV_SYSTEM_PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check_kitti_mistakes.py
+        $<TARGET_FILE:kitti_triplets> ${PROJECT_SOURCE_DIR}/../shared/data/kitti
+        ${CMAKE_CURRENT_BINARY_DIR}/kitti_mistakes)
+    set_tests_properties(kitti_mistakes_matrix PROPERTIES TIMEOUT 1800
+      SKIP_REGULAR_EXPRESSION "kitti mistakes test skipped")
+  endif()
 endif()

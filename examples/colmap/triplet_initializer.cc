@@ -70,9 +70,9 @@ DEFINE_string(
     "optimum): ceres (the times in README.md were made with it), ceres_points_eliminated (the "
     "library's default) or dedicated (trigrav's own solver, the fastest).");
 DEFINE_bool(check_gravity,
-            false,
-            "Compare the gravity with a gravity-free estimate also after a success "
-            "(RobustThreeViewOptions::check_gravity_after_success; about 10 times slower).");
+            true,
+            "Compare with a gravity-free estimate also after a success "
+            "(RobustThreeViewOptions::check_gravity_after_success, the library's default).");
 DEFINE_uint64(seed, 1, "RANSAC seed (triplet i uses seed + i).");
 DEFINE_int32(threads, 2, "Worker threads (one triplet each).");
 

@@ -40,7 +40,7 @@ DEFINE_bool(gravity_check, true, "false: robust.max_gravity_inconsistency_deg = 
 DEFINE_bool(gravity_prior,
             false,
             "Gravity-prior rotation model (tilt correction) instead of yaw-only.");
-DEFINE_bool(check_gravity_after_success, false, "robust.check_gravity_after_success.");
+DEFINE_bool(check_gravity_after_success, true, "robust.check_gravity_after_success.");
 DEFINE_string(mistakes, "all", "all, or one name of trigrav/evaluation/input_mistakes.h.");
 DEFINE_int32(outlier_triplets, 1000, "Triplets of the pure-outlier timing (0: skip it).");
 DEFINE_int32(outlier_runs, 20, "Calls timed on pure outliers (median).");

@@ -55,8 +55,7 @@ void RejectWithoutParallax(const TripletData& data,
       "no parallax between views 1 and 2: a rotation of camera 2 without baseline explains " +
       std::to_string(static_cast<int>(std::round(100.0 * share))) + " % of the " +
       std::to_string(estimate->ransac.num_inliers) +
-      " inliers, so camera 2's centre (the scale |C2| = 1) is not observable (zero baseline, pure "
-      "rotation, points at infinity)";
+      " inliers: camera 2's centre (the scale) is not observable; give views with a baseline";
   estimate->success = false;
   estimate->pose = ThreeViewPose();
   estimate->inliers.clear();

@@ -114,10 +114,15 @@ Diagnosis GravityDiagnosis(const VerdictSettings& settings,
   const std::array<double, 2>& direction = g->direction_disagreement_deg;
   if (std::max(rotation[0], rotation[1]) > disagreement.rotation_deg ||
       std::max(direction[0], direction[1]) > disagreement.direction_deg) {
-    // The gravity agrees with the images, yet the gravity-aware search settled on another motion.
+    // The gravity agrees with the images within the bound, yet the gravity-aware search settled on
+    // another motion: a gravity noisier than the model allows, the view order or the intrinsics.
     return {FailureCause::kOtherMotion,
-            "the images favour another motion: views out of order, or intrinsics that do not "
-            "match the pixels (resolution, (row, column))?" +
+            (settings.tilt_correcting
+                 ? std::string("the images favour another motion: gravity noisier than "
+                               "gravity_sigma_deg, views out of order or wrong intrinsics?")
+                 : std::string("the images favour another motion: gravity noisier than the "
+                               "yaw-only model (use the gravity-prior model), views out of order "
+                               "or wrong intrinsics?")) +
                 counts};
   }
   // The same motion within the bounds: on a success, nothing to object to; on a failure, the

@@ -83,8 +83,10 @@ struct RobustThreeViewOptions {
   // The largest standard deviation (deg) of the rotations and of the centres' directions that the
   // winner's inliers may leave at a noise of ransac.max_error / 3 (the Gauss-Newton prediction,
   // derivations.md section 7.7) for a success. Rule behind the default: a 2D error of Rayleigh
-  // scale sigma exceeds 5 deg with probability exp(-12.5 / sigma^2), 4e-4 at 1.25 deg; every
-  // correct KITTI 00 / 02 triplet predicts below it (README, robustness). +infinity: no test.
+  // scale sigma exceeds 5 deg with probability exp(-12.5 / sigma^2), 3e-4 at 1.25 deg. On KITTI 00
+  // and 02 with exact gravity the upright estimates predict at most 0.32 deg; two gravity-prior
+  // estimates at the end of 00 predict 1.9 and 2.4 deg and are refused (README, robustness).
+  // +infinity: no test.
   double max_pose_sigma_deg = 1.25;
   // The fewest inliers a success may have. Rule behind the default: COLMAP's minimum for a
   // two-view geometry (15); with fewer, the predicted precision itself is unreliable (KITTI with 5

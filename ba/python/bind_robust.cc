@@ -82,7 +82,9 @@ void BindResults(py::module_& m) {
       .value("NOISY_GRAVITY", FailureCause::kNoisyGravity,
              "the gravity is noisier than the rotation model allows")
       .value("OTHER_MOTION", FailureCause::kOtherMotion,
-             "a gravity-free model explains more and disagrees");
+             "a gravity-free model explains more and disagrees")
+      .value("REFINEMENT_SHIFT", FailureCause::kRefinementShift,
+             "the refinement moved the verified pose beyond 5 deg");
 
   py::class_<RansacStatistics>(m, "RansacStatistics", "What a RANSAC run did.")
       .def_readonly("num_inliers", &RansacStatistics::num_inliers)

@@ -243,6 +243,7 @@ class FailureCause:
     CAMERA_GRAVITY: ClassVar[FailureCause]
     NOISY_GRAVITY: ClassVar[FailureCause]
     OTHER_MOTION: ClassVar[FailureCause]
+    REFINEMENT_SHIFT: ClassVar[FailureCause]
     def __init__(self, value: int) -> None: ...
     @property
     def name(self) -> str: ...

@@ -105,6 +105,8 @@ const char* FailureCauseName(FailureCause cause) {
       return "noisy-gravity";
     case FailureCause::kOtherMotion:
       return "other-motion";
+    case FailureCause::kRefinementShift:
+      return "refinement-shift";
   }
   throw std::invalid_argument("trigrav: unknown FailureCause value");
 }

@@ -80,10 +80,11 @@ struct ThreeViewEstimate {
 
 // Throws std::invalid_argument for invalid observations (ThreeViewObservations::Check) or options.
 // success means the evidence supports the pose (EstimateThreeViewPoseRobust's verdict,
-// robust_three_view.h); anything else gives success == false with a message, the likely cause
-// first. If the
-// refinement fails, `refined` is the initial pose and the message says why (success stays true).
-// The returned poses are always finite when success is true.
+// robust_three_view.h) and, with the yaw-only model, the refinement moved it by at most 5 deg
+// (rotations and centre directions; beyond, the exact gravity the model imposes contradicts the
+// verified pose: FailureCause::kRefinementShift); anything else gives success == false with a
+// message, the likely cause first. If the refinement fails, `refined` is the initial pose and the
+// message says why (success stays true). The returned poses are always finite when success is true.
 ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
                                       const InitializeAndRefineOptions& options);
 

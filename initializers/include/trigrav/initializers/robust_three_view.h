@@ -139,6 +139,7 @@ enum class FailureCause {
   kCameraGravity,       // one or more cameras' gravity contradicts the images
   kNoisyGravity,        // the gravity is noisier than the rotation model allows
   kOtherMotion,         // a gravity-free model explains more and disagrees: intrinsics or order
+  kRefinementShift,     // InitializeAndRefine: the refinement moved the verified pose beyond 5 deg
 };
 const char* FailureCauseName(FailureCause cause);
 

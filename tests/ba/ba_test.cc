@@ -222,12 +222,13 @@ TEST(InitializeAndRefineStatisticalTest, YawOnlyRefinementThatLeavesTheVerifiedP
       shifted += estimate.cause == FailureCause::kRefinementShift;
       continue;
     }
-    far_off += ComputeThreeViewPoseErrors(scene.ground_truth, estimate.refined)
-                   .MaxTranslationDeg() > 10.0;
+    far_off +=
+        ComputeThreeViewPoseErrors(scene.ground_truth, estimate.refined).MaxTranslationDeg() > 10.0;
   }
-  std::printf("5pt, yaw-only, 0.1 deg IMU, 60 driving triplets: %d refinements refused, %d "
-              "successes more than 10 deg off\n",
-              shifted, far_off);
+  std::printf(
+      "5pt, yaw-only, 0.1 deg IMU, 60 driving triplets: %d refinements refused, %d "
+      "successes more than 10 deg off\n",
+      shifted, far_off);
   // Measured: 22 refused, 2 left, whose five-point RANSAC pose is itself that far off (these weak
   // forward-motion scenes; a gravity-free method has no gravity-free estimate to be compared with).
   EXPECT_GE(shifted, 10);

@@ -5,12 +5,14 @@ namespace {
 
 using RotationModel = ThreeViewBundleAdjustmentOptions::RotationModel;
 
-// The RANSAC stage of an InitializeAndRefine estimate.
+// The RANSAC stage of an InitializeAndRefine estimate: a success when the verdict accepted the
+// RANSAC pose, whatever the refinement did with it afterwards.
 MethodPose RawStage(const ThreeViewEstimate& estimate) {
   MethodPose pose;
-  pose.success = estimate.success;
-  pose.message = estimate.message;
-  pose.cause = estimate.cause;
+  const bool refinement_refused = estimate.cause == FailureCause::kRefinementShift;
+  pose.success = estimate.success || refinement_refused;
+  pose.message = refinement_refused ? "" : estimate.message;
+  pose.cause = refinement_refused ? FailureCause::kNone : estimate.cause;
   pose.pose = estimate.initial;
   pose.inliers = estimate.initial_inliers;
   pose.ransac = estimate.ransac;

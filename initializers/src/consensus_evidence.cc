@@ -18,13 +18,10 @@ struct Domain {
 };
 
 Domain PixelDomain(const std::vector<Eigen::Vector2d>& pixels, double threshold) {
-  Eigen::Vector2d low = pixels.front(), high = pixels.front();
-  for (const Eigen::Vector2d& pixel : pixels) {
-    low = low.cwiseMin(pixel);
-    high = high.cwiseMax(pixel);
-  }
+  const PixelBox box = PixelBoundingBox(pixels);
   // No narrower than the fit regions themselves: a degenerate box would make every fit "unlikely".
-  const Eigen::Vector2d size = (high - low).cwiseMax(Eigen::Vector2d::Constant(4.0 * threshold));
+  const Eigen::Vector2d size =
+      (box.high - box.low).cwiseMax(Eigen::Vector2d::Constant(4.0 * threshold));
   return {size.x() * size.y(), size.norm()};
 }
 
@@ -180,6 +177,15 @@ PosePrecision Predict(const TripletData& data,
 }
 
 }  // namespace
+
+PixelBox PixelBoundingBox(const std::vector<Eigen::Vector2d>& pixels) {
+  PixelBox box{pixels.front(), pixels.front()};
+  for (const Eigen::Vector2d& pixel : pixels) {
+    box.low = box.low.cwiseMin(pixel);
+    box.high = box.high.cwiseMax(pixel);
+  }
+  return box;
+}
 
 std::array<double, 3> ThresholdUnitsPerRadian(const ThreeViewObservations& observations) {
   std::array<double, 3> units;

@@ -5,6 +5,7 @@
 // alarms of its inlier count against triplets that fit by chance, and the precision its inliers
 // give the pose.
 
+#include <Eigen/Core>
 #include <array>
 #include <vector>
 
@@ -14,6 +15,12 @@
 
 namespace trigrav {
 namespace internal {
+
+// The bounding box of a view's pixels (non-empty): corners low and high.
+struct PixelBox {
+  Eigen::Vector2d low, high;
+};
+PixelBox PixelBoundingBox(const std::vector<Eigen::Vector2d>& pixels);
 
 // Per view: the scale that turns a tangent-plane offset (radians) into the threshold's unit (the
 // mean focal length in pixels; 180 / pi for bearings, whose threshold is in degrees).

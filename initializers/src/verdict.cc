@@ -161,22 +161,18 @@ bool CompareWithGravityFree(const TripletData& data,
 }
 
 // Pixels that the intrinsics cannot have produced (section 7.7): in some view, pixels beyond the
-// image the principal point implies (0 to 2 c, with a fifth of it as margin for a principal point
-// off the image centre), or a principal point
-// in a corner of the pixels' bounding box (in its outer tenth, or beyond, along both axes, as
-// pixels of a downscaled image put it; with at least kMinTripletsForCentre triplets). Returns the
-// message, "" when the pixels fit.
+// image the principal point implies (0 to 2 c, with half of it as margin for synthetic scenes that
+// project beyond their image), or a principal point in a corner of the pixels' bounding box (in its
+// outer tenth, or beyond, along both axes, as pixels of a downscaled image put it; with at least
+// kMinTripletsForCentre triplets). Returns the message, "" when the pixels fit.
 constexpr std::size_t kMinTripletsForCentre = 50;
 std::string PixelsAgainstIntrinsics(const ThreeViewObservations& observations) {
   if (observations.HasBearings()) return "";
   for (int k = 0; k < 3; ++k) {
     const std::vector<Eigen::Vector2d>& pixels = observations.pixels[k];
     if (pixels.empty()) continue;
-    Eigen::Vector2d low = pixels.front(), high = pixels.front();
-    for (const Eigen::Vector2d& pixel : pixels) {
-      low = low.cwiseMin(pixel);
-      high = high.cwiseMax(pixel);
-    }
+    const PixelBox box = PixelBoundingBox(pixels);
+    const Eigen::Vector2d &low = box.low, &high = box.high;
     // The principal point: the pixel of the optical axis.
     const Eigen::Vector2d centre = observations.cameras[k].Project(Eigen::Vector3d::UnitZ());
     const Eigen::Vector2d image = 2.0 * centre;

@@ -186,7 +186,7 @@ inline Input MakeInput(Geometry geometry, int num_triplets) {
   }
 
   // Points (or directions) in front of all three cameras, within what a real 640 x 480 camera
-  // could image (its image and a margin of 100 / 80 px; the verdict refuses pixels beyond a fifth
+  // could image (its image and a margin of 100 / 80 px; the verdict refuses pixels beyond half
   // of the image the principal point implies, robust_three_view.h).
   std::vector<Eigen::Vector3d> points;
   auto in_camera = [&](int k, const Eigen::Vector3d& x) -> Eigen::Vector3d {

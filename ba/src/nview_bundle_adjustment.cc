@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 #include "best_fit_yaw.h"
@@ -114,8 +115,10 @@ void NViewReconstruction::Check() const {
     if (!IsRotation(image.cam_from_world.R)) {
       Fail(where, Indexed("images", k) + ".cam_from_world.R is not a rotation");
     }
-    if (!image.gravity_in_cam.allFinite() || !(image.gravity_in_cam.norm() > 0.0)) {
-      Fail(where, Indexed("images", k) + ".gravity_in_cam is zero or not finite");
+    try {
+      GravityAlignmentFromGravity(image.gravity_in_cam);
+    } catch (const std::invalid_argument& e) {
+      Fail(where, Indexed("images", k) + ".gravity_in_cam: " + e.what());
     }
   }
   for (std::size_t p = 0; p < points_in_world.size(); ++p) {
@@ -309,12 +312,30 @@ void NViewBundleAdjuster::Build() {
   const Eigen::Vector3d baseline = centers_[scale_image_] - centers_[reference];
   int scale_axis = 0;
   baseline.cwiseAbs().maxCoeff(&scale_axis);  // y or z
-  double scene_extent = 0.0;
+  // The scene's extent about the reference centre: its farthest camera centre or point. A baseline
+  // below 1e-9 of it (e.g. all centres equal but for round-off) would fix the scale at round-off,
+  // the points' depths and the covariances unbounded: refused.
+  double centers_extent = 0.0, points_extent = 0.0;
   for (const Eigen::Vector3d& c : centers_) {
-    scene_extent = std::max(scene_extent, (c - centers_[reference]).norm());
+    centers_extent = std::max(centers_extent, (c - centers_[reference]).norm());
   }
+  for (int p = 0; p < num_points; ++p) {
+    if (!point_used_[p]) continue;
+    points_extent = std::max(points_extent, (points_[p] - centers_[reference]).norm());
+  }
+  const double scene_extent = std::max(centers_extent, points_extent);
   if (!(baseline.norm() > 1e-9 * scene_extent)) {
-    message_ = "the scale image's centre coincides with the reference image's";
+    std::ostringstream message;
+    if (!(centers_extent > 1e-9 * scene_extent)) {
+      message << "all camera centres coincide (within " << centers_extent
+              << " of the reference image's, the points up to " << points_extent
+              << " away): no baseline fixes the scale; start from poses that have one";
+    } else {
+      message << "the scale image's centre coincides with the reference image's ("
+              << baseline.norm() << " apart, the scene " << scene_extent
+              << " across): choose another scale_image";
+    }
+    message_ = message.str();
     return;
   }
 

@@ -6,6 +6,9 @@
 #include <ceres/solver.h>
 #include <ceres/types.h>
 
+#include <algorithm>
+#include <thread>
+
 namespace trigrav {
 namespace internal {
 
@@ -19,6 +22,16 @@ namespace internal {
 // (tests/ba/quiet_test.cc). No glog flag is touched.
 inline constexpr double kMaxTrustRegionRadius = 1e7;
 
+// The num_threads handed to Ceres: the caller's, bounded by std::thread::hardware_concurrency()
+// when known. Ceres 2.1 bounds it there itself (preprocessor.cc, ChangeNumThreadsIfNeeded, on every
+// Solve) but prints an unconditional LOG(WARNING) first ("Specified options.num_threads: 64
+// exceeds maximum available from the threading model Ceres was compiled with: 2.  Bounding to
+// maximum number available."). Same threads, same answer, no print (tests/ba/quiet_test.cc).
+inline int CeresNumThreads(int num_threads) {
+  const int hardware = static_cast<int>(std::thread::hardware_concurrency());  // 0: unknown
+  return hardware > 0 ? std::min(num_threads, hardware) : num_threads;
+}
+
 // True for an enumerator of ceres::LinearSolverType. Ceres aborts (LOG(FATAL)) on any other value;
 // its name round-trips only if valid.
 inline bool IsLinearSolverType(ceres::LinearSolverType type) {
@@ -29,13 +42,14 @@ inline bool IsLinearSolverType(ceres::LinearSolverType type) {
 
 // Ceres options from the fields both adjusters' options have (linear_solver_type,
 // max_num_iterations, num_threads, function_tolerance, gradient_tolerance, parameter_tolerance):
-// silent (nothing on stdout or stderr), the radius capped at kMaxTrustRegionRadius.
+// silent (nothing on stdout or stderr: num_threads bounded by CeresNumThreads), the radius capped
+// at kMaxTrustRegionRadius.
 template <typename AdjusterOptions>
 ceres::Solver::Options SharedSolverOptions(const AdjusterOptions& options) {
   ceres::Solver::Options solver_options;
   solver_options.linear_solver_type = options.linear_solver_type;
   solver_options.max_num_iterations = options.max_num_iterations;
-  solver_options.num_threads = options.num_threads;
+  solver_options.num_threads = CeresNumThreads(options.num_threads);
   solver_options.function_tolerance = options.function_tolerance;
   solver_options.gradient_tolerance = options.gradient_tolerance;
   solver_options.parameter_tolerance = options.parameter_tolerance;

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <iterator>
+#include <sstream>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -198,9 +199,20 @@ bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial,
     return false;
   }
   const CameraPose* poses[2] = {&initial.cam2_from_cam1, &initial.cam3_from_cam1};
-  const double scale = initial.cam2_from_cam1.Center().norm();
-  if (!(scale > 1e-12) || !std::isfinite(scale)) {
-    message_ = "initial pose has |C2| = 0";
+  // The pose is rescaled to |C2| = 1; stableNorm where norm() overflows (|C2| above ~1e154) or
+  // underflows, so that any finite scale works.
+  const Eigen::Vector3d center2 = initial.cam2_from_cam1.Center();
+  const double norm2 = center2.norm();
+  const double scale = std::isnormal(norm2) ? norm2 : center2.stableNorm();
+  if (!std::isfinite(scale)) {
+    message_ = "initial pose's camera 2 centre -R^T t overflows (t too large for doubles)";
+    return false;
+  }
+  if (!(scale > 1e-12)) {
+    std::ostringstream message;
+    message << "initial pose has no baseline between cameras 1 and 2 (|C2| = " << scale
+            << ", at most 1e-12)";
+    message_ = message.str();
     return false;
   }
   std::array<Eigen::Matrix3d, 3> rotation;

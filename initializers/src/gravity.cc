@@ -3,8 +3,10 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "gravity_alignment.h"
+#include "input_checks.h"
 
 namespace trigrav {
 
@@ -17,16 +19,11 @@ Eigen::Matrix3d RotationAboutY(double theta_rad) {
 }
 
 Eigen::Matrix3d GravityAlignmentFromGravity(const Eigen::Vector3d& gravity_in_cam) {
-  if (!gravity_in_cam.allFinite()) {
-    throw std::invalid_argument("trigrav: gravity direction has non-finite entries");
+  if (!internal::IsUsableDirection(gravity_in_cam)) {
+    throw std::invalid_argument("trigrav: gravity direction is " +
+                                internal::DirectionProblem(gravity_in_cam, "zero"));
   }
-  const double norm = gravity_in_cam.norm();
-  if (!(norm > 0.0)) throw std::invalid_argument("trigrav: gravity direction has zero length");
-  if (!std::isfinite(norm)) {
-    throw std::invalid_argument(
-        "trigrav: gravity direction is too long (its squared length overflows)");
-  }
-  return internal::AlignmentFromUsableGravity(gravity_in_cam, norm);
+  return internal::AlignmentFromUsableGravity(gravity_in_cam, gravity_in_cam.norm());
 }
 
 Eigen::Matrix3d GravityAlignmentFromPitchRoll(double pitch_rad, double roll_rad) {

@@ -7,20 +7,28 @@
 
 namespace trigrav {
 namespace internal {
+
+std::string DirectionProblem(const Eigen::Vector3d& v, const std::string& zero) {
+  if (!v.allFinite()) return "not finite";
+  if (v.isZero(0.0)) return zero;
+  const bool too_long = v.squaredNorm() > 0.0;  // else it underflowed to 0
+  // stableNorm: the length itself, where norm() gives Inf or 0.
+  std::ostringstream message;
+  message << "too " << (too_long ? "long" : "short") << " to normalise (length " << v.stableNorm()
+          << ": its squared length " << (too_long ? "overflows" : "underflows to 0")
+          << "); scale it to about unit length";
+  return message.str();
+}
+
 namespace {
 
 void CheckRays(const char* solver, const char* name, const std::vector<Eigen::Vector3d>& rays) {
   for (std::size_t n = 0; n < rays.size(); ++n) {
-    // One comparison per ray on the hot path (every solver call): NaN fails both, an infinite entry
-    // or an overflowing length the second; the reason is worked out only on failure.
+    // One comparison per ray on the hot path (every solver call); the message only on failure.
     if (!IsUsableDirection(rays[n])) {
-      const double norm = rays[n].norm();
-      std::ostringstream message;
-      message << "trigrav: " << solver << ": " << name << "[" << n << "] is "
-              << (!rays[n].allFinite() ? "not finite"
-                  : norm > 0.0         ? "too long (its squared length overflows)"
-                                       : "a zero-length ray");
-      throw std::invalid_argument(message.str());
+      throw std::invalid_argument(std::string("trigrav: ") + solver + ": " + name + "[" +
+                                  std::to_string(n) + "] is " +
+                                  DirectionProblem(rays[n], "a zero-length ray"));
     }
   }
 }
@@ -77,13 +85,8 @@ void CheckPairs(const char* solver,
 
 void CheckGravity(const char* solver, const char* name, const Eigen::Vector3d& gravity) {
   if (!IsUsableDirection(gravity)) {
-    const double norm = gravity.norm();
-    std::ostringstream message;
-    message << "trigrav: " << solver << ": " << name << " is "
-            << (!gravity.allFinite() ? "not finite"
-                : norm > 0.0         ? "too long (its squared length overflows)"
-                                     : "zero");
-    throw std::invalid_argument(message.str());
+    throw std::invalid_argument(std::string("trigrav: ") + solver + ": " + name + " is " +
+                                DirectionProblem(gravity, "zero"));
   }
 }
 

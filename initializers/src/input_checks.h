@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "trigrav/initializers/camera_pose.h"
@@ -14,17 +15,22 @@
 namespace trigrav {
 namespace internal {
 
-// True if v is finite with a non-zero length whose square does not overflow, which the input checks
-// demand of rays and gravity. One comparison: NaN fails it, and an infinite entry or an overflowing
-// length gives an infinite squared length.
+// True if v is finite with a non-zero length whose square neither underflows to 0 nor overflows
+// (a length within about [2e-162, 1e154]), which the input checks demand of rays and gravity. One
+// comparison: NaN fails it, and an infinite entry or an overflowing length gives an infinite
+// squared length.
 inline bool IsUsableDirection(const Eigen::Vector3d& v) {
   const double squared = v.squaredNorm();
   return squared > 0.0 && squared <= std::numeric_limits<double>::max();
 }
 
+// What is wrong with a v that fails IsUsableDirection, to follow "<name> is ": "not finite", `zero`
+// (the caller's wording) for a zero vector, else too short or too long to normalise, with the
+// length.
+std::string DirectionProblem(const Eigen::Vector3d& v, const std::string& zero);
+
 // Throws std::invalid_argument unless x1, x2, x3 have the same size within
-// [min_triplets, max_triplets], every ray is finite with non-zero length, and solutions is not
-// null.
+// [min_triplets, max_triplets], every ray passes IsUsableDirection, and solutions is not null.
 void CheckTriplets(const char* solver,
                    std::size_t min_triplets,
                    std::size_t max_triplets,
@@ -34,8 +40,8 @@ void CheckTriplets(const char* solver,
                    const void* solutions);
 
 // The two-view counterpart of CheckTriplets: throws std::invalid_argument unless x1, x2 have the
-// same size within [min_pairs, max_pairs], every ray is finite with non-zero length, and solutions
-// is not null.
+// same size within [min_pairs, max_pairs], every ray passes IsUsableDirection, and solutions is
+// not null.
 void CheckPairs(const char* solver,
                 std::size_t min_pairs,
                 std::size_t max_pairs,
@@ -43,7 +49,7 @@ void CheckPairs(const char* solver,
                 const std::vector<Eigen::Vector3d>& x2,
                 const void* solutions);
 
-// Throws std::invalid_argument if a gravity direction is non-finite or has zero length.
+// Throws std::invalid_argument if a gravity direction fails IsUsableDirection (DirectionProblem).
 void CheckGravity(const char* solver, const char* name, const Eigen::Vector3d& gravity);
 
 // Throws std::invalid_argument naming the first pose with a non-finite entry, as "name[i]".

@@ -37,11 +37,10 @@ void CheckCamera(const Camera& camera, int k) {
 
 void CheckGravityDirection(const Eigen::Vector3d& gravity, int k) {
   if (internal::IsUsableDirection(gravity)) return;
-  const std::string name = "gravity_in_cam[" + std::to_string(k) + "] is ";
-  if (!gravity.allFinite()) Fail(name + "not finite");
-  if (gravity.norm() > 0.0) Fail(name + "too long (its squared length overflows)");
-  Fail(name + "not set (zero): give the direction of gravity (down) in camera " +
-       std::to_string(k + 1) + "'s own frame");
+  const std::string unset = "not set (zero): give the direction of gravity (down) in camera " +
+                            std::to_string(k + 1) + "'s own frame";
+  Fail("gravity_in_cam[" + std::to_string(k) + "] is " +
+       internal::DirectionProblem(gravity, unset));
 }
 
 // Unprojects the pixels into *rays (when not null), throwing for one that cannot be.
@@ -70,10 +69,7 @@ void CheckPixels(const Camera& camera,
 void CheckBearings(const std::vector<Eigen::Vector3d>& bearings, int k) {
   for (std::size_t n = 0; n < bearings.size(); ++n) {
     if (internal::IsUsableDirection(bearings[n])) continue;
-    Fail(Entry("bearings", k, n) + " is " +
-         (!bearings[n].allFinite()   ? "not finite"
-          : bearings[n].norm() > 0.0 ? "too long (its squared length overflows)"
-                                     : "zero"));
+    Fail(Entry("bearings", k, n) + " is " + internal::DirectionProblem(bearings[n], "zero"));
   }
 }
 

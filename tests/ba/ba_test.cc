@@ -429,9 +429,45 @@ TEST(ThreeViewBundleAdjusterTest, RejectsNonFiniteInitialPose) {
   EXPECT_FALSE(adjuster.message().empty());
   pose.cam2_from_cam1.t.setZero();  // |C2| = 0
   EXPECT_FALSE(adjuster.Build(pose));
+  EXPECT_EQ(adjuster.message(),
+            "initial pose has no baseline between cameras 1 and 2 (|C2| = 0, at most 1e-12)");
   const ThreeViewBundleAdjustmentSummary summary = adjuster.Solve();
   EXPECT_FALSE(summary.success);
   EXPECT_FALSE(summary.message.empty());
+}
+
+// The pose's scale is free: a translation of 1e300 refines as one of 1 (its |C2| does not overflow
+// to a "zero" baseline). Only |C2| <= 1e-12, or a centre -R^T t that overflows, is refused, by
+// name.
+TEST(ThreeViewBundleAdjusterTest, TakesAnyFiniteBaselineAndNamesAMissingOne) {
+  std::mt19937_64 rng(10);
+  const SyntheticScene scene = GenerateSyntheticScene(SceneOptions(0.0), &rng);
+  const ThreeViewObservations o = ToObservations(scene);
+  const ThreeViewBundleAdjustmentOptions options;
+  ThreeViewPose huge = scene.ground_truth;
+  huge.cam2_from_cam1.t *= 1e300;
+  huge.cam3_from_cam1.t *= 1e300;
+  const ThreeViewRefinement unit =
+      RefineThreeViewPose(o, scene.ground_truth, scene.is_inlier, options);
+  const ThreeViewRefinement from_huge = RefineThreeViewPose(o, huge, scene.is_inlier, options);
+  ASSERT_TRUE(unit.summary.success) << unit.summary.message;
+  ASSERT_TRUE(from_huge.summary.success) << from_huge.summary.message;
+  EXPECT_LT((from_huge.pose.cam3_from_cam1.t - unit.pose.cam3_from_cam1.t).norm(), 1e-12);
+  EXPECT_LT((from_huge.pose.cam3_from_cam1.R - unit.pose.cam3_from_cam1.R).norm(), 1e-12);
+
+  ThreeViewBundleAdjuster adjuster(o, {}, options);
+  ThreeViewPose tiny = scene.ground_truth;
+  tiny.cam2_from_cam1.t *= 1e-13 / tiny.cam2_from_cam1.Center().norm();
+  EXPECT_FALSE(adjuster.Build(tiny));
+  EXPECT_EQ(adjuster.message(),
+            "initial pose has no baseline between cameras 1 and 2 (|C2| = 1e-13, at most 1e-12)");
+  ThreeViewPose overflowing = scene.ground_truth;  // finite R and t, C2 = -R^T t is not
+  overflowing.cam2_from_cam1.R = RotationAboutY(M_PI / 4.0);
+  overflowing.cam2_from_cam1.t =
+      Eigen::Vector3d(1.0, 0.0, 1.0) * std::numeric_limits<double>::max();
+  EXPECT_FALSE(adjuster.Build(overflowing));
+  EXPECT_EQ(adjuster.message(),
+            "initial pose's camera 2 centre -R^T t overflows (t too large for doubles)");
 }
 
 }  // namespace

@@ -631,18 +631,31 @@ void AddNonFiniteCases(std::vector<Case>* cases) {
                               "zero gravity in view " + view, kGravity, kThrows,
                               gravity + " (is zero|has zero length|is not set \\(zero\\))",
                               [=](Input* in) { in->observations.gravity_in_cam[k].setZero(); }));
-    cases->push_back(MakeCase("zero-length or overflowing ray or gravity",
-                              "gravity of length 1e200 in view " + view, kGravity, kThrows,
-                              gravity + " is too long",
-                              [=](Input* in) { in->observations.gravity_in_cam[k] *= 1e200; }));
-    cases->push_back(MakeCase("zero-length or overflowing ray or gravity",
-                              "first ray of view " + view + " of length 1e200", ray_field, kThrows,
-                              "x" + view + "\\[0\\] is too long",
-                              [=](Input* in) {
-                                in->rays[k][0] *= 1e200;
-                                in->aligned_rays[k][0] *= 1e200;
-                              },
-                              Geometry::kGeneric, Count::kDefault, {{Eps({kTriangulate}), kNone}}));
+    // Lengths whose square overflows or underflows to 0: named as such, not as zero.
+    struct Length {
+      double value;
+      const char* name;
+      const char* problem;
+    };
+    for (const Length& length :
+         {Length{1e200, "1e200", "too long to normalise \\(length 1e\\+200"},
+          Length{1e-300, "1e-300", "too short to normalise \\(length 1e-300"}}) {
+      auto rescale = [value = length.value](Eigen::Vector3d* v) { *v *= value / v->norm(); };
+      cases->push_back(
+          MakeCase("zero-length or overflowing ray or gravity",
+                   std::string("gravity of length ") + length.name + " in view " + view, kGravity,
+                   kThrows, gravity + " is " + length.problem,
+                   [=](Input* in) { rescale(&in->observations.gravity_in_cam[k]); }));
+      cases->push_back(MakeCase("zero-length or overflowing ray or gravity",
+                                "first ray of view " + view + " of length " + length.name,
+                                ray_field, kThrows, "x" + view + "\\[0\\] is " + length.problem,
+                                [=](Input* in) {
+                                  rescale(&in->rays[k][0]);
+                                  rescale(&in->aligned_rays[k][0]);
+                                },
+                                Geometry::kGeneric, Count::kDefault,
+                                {{Eps({kTriangulate}), kNone}}));
+    }
     // Intrinsics.
     const std::string camera_message = "camera " + view + " needs positive, finite focal lengths";
     for (const char* field : {"fx", "fy", "cx", "cy"}) {

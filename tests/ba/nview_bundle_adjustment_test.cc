@@ -409,6 +409,38 @@ TEST(NViewBundleAdjustmentTest, FailsWithoutAUsableGauge) {
   EXPECT_EQ(refined.points_in_world, input.points_in_world);
 }
 
+// A start without a baseline is refused with the reason, not solved into a scale fixed at
+// round-off (all centres equal: covariances of norm ~1e9-1e10 and no note before).
+TEST(NViewBundleAdjustmentTest, RefusesAStartWithoutBaseline) {
+  NViewReconstruction input = MakeNViewScene({}, 41).truth;
+  NViewBundleAdjustmentOptions options = Options(RotationModel::kYawOnly);
+  options.compute_covariance = true;
+  NViewReconstruction all_equal = input;
+  const Eigen::Vector3d center = input.images[0].cam_from_world.Center();
+  for (NViewImage& image : all_equal.images)
+    image.cam_from_world.t = -image.cam_from_world.R * center;
+  NViewBundleAdjuster adjuster(all_equal, {}, options);
+  EXPECT_FALSE(adjuster.built());
+  EXPECT_EQ(adjuster.message().rfind("all camera centres coincide (within ", 0), 0u)
+      << adjuster.message();
+  EXPECT_NE(adjuster.message().find("no baseline fixes the scale"), std::string::npos);
+  const NViewBundleAdjustmentSummary summary = adjuster.Solve();
+  EXPECT_FALSE(summary.success);
+  EXPECT_EQ(summary.message, adjuster.message());
+  EXPECT_TRUE(summary.covariances.empty());
+
+  // Only the chosen scale image at the reference's centre.
+  NViewBundleAdjustmentConfig config;
+  config.scale_image = 1;
+  input.images[1].cam_from_world.t = -input.images[1].cam_from_world.R * center;
+  const NViewBundleAdjuster scale_at_reference(input, config, options);
+  EXPECT_FALSE(scale_at_reference.built());
+  EXPECT_EQ(scale_at_reference.message().rfind(
+                "the scale image's centre coincides with the reference image's (", 0),
+            0u)
+      << scale_at_reference.message();
+}
+
 // CGNR and ITERATIVE_SCHUR reach the default solver's optimum, silently: the Schur preconditioner
 // is set only for ITERATIVE_SCHUR (with SCHUR_JACOBI, Ceres 2.1's IsValid accepts CGNR, whose
 // constructor then CHECK-fails: "Preconditioner = SCHUR_JACOBI. Congratulations, you found a bug
@@ -468,6 +500,10 @@ TEST(NViewBundleAdjustmentTest, RejectsBadInput) {
   bad = good;
   bad.images[3].gravity_in_cam.y() = NAN;
   expect_error(bad, {}, options, "images[3].gravity_in_cam");
+  bad = good;
+  bad.images[3].gravity_in_cam *= 1e-300;
+  expect_error(bad, {}, options,
+               "images[3].gravity_in_cam: trigrav: gravity direction is too short to normalise");
   bad = good;
   bad.images[4].camera_index = 1;
   expect_error(bad, {}, options, "images[4].camera_index");

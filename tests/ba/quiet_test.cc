@@ -7,21 +7,26 @@
 // compute a step: Eigen failure. Unable to perform dense Cholesky factorization." (glog
 // LOG(WARNING), not silenced by logging_type = SILENT) before ThreeViewBundleAdjuster::Solve capped
 // the radius. The control test runs Ceres on the same problems with its default radius and checks
-// that they still print, so the quiet test does not pass vacuously.
+// that they still print, so the quiet test does not pass vacuously. The same holds for num_threads
+// above the core count, which Ceres 2.1 bounds with a glog warning on every Solve.
 #include <ceres/solver.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "driving_scene.h"
+#include "nview_scene.h"
 #include "trigrav/ba/initialize_and_refine.h"
+#include "trigrav/ba/nview_bundle_adjustment.h"
 #include "trigrav/ba/refine_three_view_pose.h"
 #include "trigrav/ba/three_view_bundle_adjustment.h"
 #include "trigrav/evaluation/synthetic_scene.h"
@@ -203,6 +208,81 @@ TEST(QuietTest, LibraryCallsPrintNothing) {
   const std::string out = capture.Finish();
   EXPECT_EQ(out, "") << "library calls wrote " << out.size() << " bytes to stdout / stderr";
   for (const std::string& call : calls) std::printf("%s\n", call.c_str());
+}
+
+// num_threads above the core count: Ceres 2.1 bounds it to std::thread::hardware_concurrency() with
+// an unconditional glog warning on every Solve (preprocessor.cc, "Specified options.num_threads: 64
+// exceeds maximum available ..."); the adjusters hand Ceres the bounded count. The control shows
+// that Ceres still prints on a three-view problem when given the caller's count.
+const int kCores = static_cast<int>(std::thread::hardware_concurrency());
+const int kManyThreads = std::max(64, 2 * kCores);
+
+// The largest difference between two three-view poses' entries.
+double PoseDifference(const ThreeViewPose& a, const ThreeViewPose& b) {
+  return std::max({(a.cam2_from_cam1.R - b.cam2_from_cam1.R).cwiseAbs().maxCoeff(),
+                   (a.cam2_from_cam1.t - b.cam2_from_cam1.t).cwiseAbs().maxCoeff(),
+                   (a.cam3_from_cam1.R - b.cam3_from_cam1.R).cwiseAbs().maxCoeff(),
+                   (a.cam3_from_cam1.t - b.cam3_from_cam1.t).cwiseAbs().maxCoeff()});
+}
+
+TEST(QuietTest, ControlCeresWarnsAboutNumThreadsAboveTheCoreCount) {
+  ASSERT_GT(kCores, 0);
+  std::mt19937_64 rng(2);
+  const SyntheticScene scene = GenerateSyntheticScene(SyntheticSceneOptions(), &rng);
+  ThreeViewBundleAdjustmentOptions options;
+  options.engine = ThreeViewBundleAdjustmentOptions::Engine::kCeres;
+  ThreeViewBundleAdjuster adjuster(ToObservations(scene), {}, options);
+  ASSERT_TRUE(adjuster.Build(scene.ground_truth)) << adjuster.message();
+  ceres::Solver::Options solver_options = options.CeresSolverOptions();
+  solver_options.num_threads = kManyThreads;
+  ceres::Solver::Summary summary;
+  OutputCapture capture;
+  ASSERT_TRUE(capture.ok());
+  ceres::Solve(solver_options, adjuster.problem(), &summary);
+  EXPECT_NE(capture.Finish().find("exceeds maximum available"), std::string::npos);
+  EXPECT_EQ(summary.num_threads_used, kCores);
+}
+
+TEST(QuietTest, NumThreadsAboveTheCoreCountPrintsNothingAndChangesNothing) {
+  std::mt19937_64 rng(2);
+  const SyntheticScene scene = GenerateSyntheticScene(SyntheticSceneOptions(), &rng);
+  const ThreeViewObservations observations = ToObservations(scene);
+  const std::vector<char> all(observations.size(), 1);
+  const NViewReconstruction truth = testing_utils::MakeNViewScene({}, 41).truth;
+  const NViewReconstruction start = testing_utils::PerturbReconstruction(truth, 1.0, 0.05, 0.02, 7);
+  for (const auto engine : {ThreeViewBundleAdjustmentOptions::Engine::kCeres,
+                            ThreeViewBundleAdjustmentOptions::Engine::kCeresPointsEliminated}) {
+    ThreeViewBundleAdjustmentOptions options;
+    options.engine = engine;
+    options.num_threads = kCores;
+    const ThreeViewRefinement at_cores =
+        RefineThreeViewPose(observations, scene.ground_truth, all, options);
+    options.num_threads = kManyThreads;
+    OutputCapture capture;
+    ASSERT_TRUE(capture.ok());
+    const ThreeViewRefinement many =
+        RefineThreeViewPose(observations, scene.ground_truth, all, options);
+    EXPECT_EQ(capture.Finish(), "");
+    ASSERT_TRUE(many.summary.success) << many.summary.message;
+    EXPECT_EQ(many.summary.ceres_summary.num_threads_used, kCores);
+    EXPECT_EQ(PoseDifference(many.pose, at_cores.pose), 0.0);
+  }
+  NViewBundleAdjustmentOptions options;
+  options.num_threads = kCores;
+  NViewReconstruction at_cores, many;
+  ASSERT_TRUE(RefineWithGravity(start, {}, options, &at_cores).success);
+  options.num_threads = kManyThreads;
+  OutputCapture capture;
+  ASSERT_TRUE(capture.ok());
+  const NViewBundleAdjustmentSummary summary = RefineWithGravity(start, {}, options, &many);
+  EXPECT_EQ(capture.Finish(), "");
+  ASSERT_TRUE(summary.success) << summary.message;
+  EXPECT_EQ(summary.ceres_summary.num_threads_used, kCores);
+  // Ceres' multi-threaded sparse Schur sums in no fixed order: equal to round-off.
+  for (std::size_t k = 0; k < many.images.size(); ++k) {
+    EXPECT_LT((many.images[k].cam_from_world.t - at_cores.images[k].cam_from_world.t).norm(), 1e-9)
+        << k;
+  }
 }
 
 }  // namespace

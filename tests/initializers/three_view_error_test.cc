@@ -257,6 +257,17 @@ TEST(ThreeViewObservations, CheckRejectsUnsetCamerasAndGravity) {
   bad.gravity_in_cam[1] = Eigen::Vector3d::Zero();
   ExpectThrowNaming(bad, "gravity_in_cam[1] is not set");
   ExpectThrowNaming(ThreeViewObservations(), "gravity_in_cam[0] is not set");
+  // Non-zero but beyond what a double's squared length holds: named, not called unset.
+  bad = observations;
+  bad.gravity_in_cam[1] *= 1e-300;
+  ExpectThrowNaming(bad,
+                    "gravity_in_cam[1] is too short to normalise (length 1e-300: its squared "
+                    "length underflows to 0)");
+  bad = observations;
+  bad.gravity_in_cam[2] *= 1e300;
+  ExpectThrowNaming(bad,
+                    "gravity_in_cam[2] is too long to normalise (length 1e+300: its squared "
+                    "length overflows)");
 }
 
 TEST(ThreeViewObservations, BearingsNeedNoCamerasAndAreChecked) {
@@ -272,6 +283,9 @@ TEST(ThreeViewObservations, BearingsNeedNoCamerasAndAreChecked) {
   ThreeViewObservations bad = observations;
   bad.bearings[2][1].setZero();
   ExpectThrowNaming(bad, "bearings[2][1] is zero");
+  bad = observations;
+  bad.bearings[2][1] = Eigen::Vector3d(0.0, 0.0, 1e-300);
+  ExpectThrowNaming(bad, "bearings[2][1] is too short to normalise (length 1e-300");
   bad = observations;
   bad.bearings[0].pop_back();
   ExpectThrowNaming(bad, "bearings of the three views differ in size");

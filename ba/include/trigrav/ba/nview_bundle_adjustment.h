@@ -68,7 +68,8 @@ namespace trigrav {
 struct NViewImage {
   int camera_index = -1;      // into NViewReconstruction::cameras
   CameraPose cam_from_world;  // x_cam = R x_world + t
-  // Measured gravity (down, any positive length) in this image's camera frame.
+  // Measured gravity (down, any length GravityAlignmentFromGravity takes) in this image's camera
+  // frame.
   Eigen::Vector3d gravity_in_cam = Eigen::Vector3d::Zero();
 };
 
@@ -87,8 +88,8 @@ struct NViewReconstruction {
 
   // Throws std::invalid_argument naming the field and index: a camera that fails Camera::Check(),
   // a camera/image/point index out of range, a non-finite pose, a rotation that is not a rotation
-  // (|R^T R - I| > 1e-6 or det < 0), a zero-length or non-finite gravity, a non-finite point or
-  // pixel, fewer than 2 images.
+  // (|R^T R - I| > 1e-6 or det < 0), a gravity that GravityAlignmentFromGravity rejects (its
+  // reason), a non-finite point or pixel, fewer than 2 images.
   void Check() const;
 };
 
@@ -128,6 +129,8 @@ struct NViewBundleAdjustmentOptions {
   bool compute_covariance = false;
 
   int max_num_iterations = 100;
+  // Ceres' threads, any number >= 1: more than std::thread::hardware_concurrency() run as that
+  // many (Ceres' own bound, without the warning Ceres would print).
   int num_threads = 1;
   // SPARSE_SCHUR (SuiteSparse) is the fastest of the Schur solvers on a driving sequence: CPU time
   // of one RefineWithGravity call at 300 images, 30000 points, 129979 observations (tracks of 2-8
@@ -190,8 +193,9 @@ class NViewBundleAdjuster {
   // Keeps a reference to `input`, which must outlive the adjuster, and builds the problem in the
   // gravity-aligned world. Throws std::invalid_argument for an input failing
   // NViewReconstruction::Check(), a bad config or bad options. A problem that cannot be built
-  // (e.g. no usable observation, a scale image at the reference's centre) is not misuse: built()
-  // is false, message() says why and Solve() returns a failed summary.
+  // (e.g. no usable observation; no baseline: all camera centres, or the scale image's, within
+  // 1e-9 of the scene's extent of the reference's centre) is not misuse: built() is false,
+  // message() says why and Solve() returns a failed summary.
   NViewBundleAdjuster(const NViewReconstruction& input,
                       const NViewBundleAdjustmentConfig& config,
                       const NViewBundleAdjustmentOptions& options);

@@ -47,8 +47,9 @@ struct ThreeViewRefinement {
 
 // Refines `initial` on the triplets whose `inliers` entry is non-zero (inliers.size() ==
 // observations.size()). Throws std::invalid_argument for invalid observations or options or a mask
-// of the wrong size. A pose that is not finite, |C2| = 0, fewer than 3 triangulable triplets or a
-// Ceres failure give summary.success == false with the reason in summary.message.
+// of the wrong size. A pose that is not finite, |C2| <= 1e-12 (no baseline;
+// ThreeViewBundleAdjuster::Build), fewer than 3 triangulable triplets or a Ceres failure give
+// summary.success == false with the reason in summary.message.
 ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observations,
                                         const ThreeViewPose& initial,
                                         const std::vector<char>& inliers,

@@ -92,6 +92,8 @@ struct ThreeViewBundleAdjustmentOptions {
   // first. InitializeAndRefine computes it in every refinement run.
   bool compute_covariance = false;
   int max_num_iterations = 50;
+  // Ceres' threads, any number >= 1: more than std::thread::hardware_concurrency() run as that
+  // many (Ceres' own bound, without the warning Ceres would print).
   int num_threads = 1;
   ceres::LinearSolverType linear_solver_type = ceres::DENSE_SCHUR;
   double function_tolerance = 1e-8;
@@ -166,7 +168,8 @@ class ThreeViewBundleAdjuster {
   // Builds the problem around `initial` (rescaled to |C_2| = 1): parameters from the pose, points
   // triangulated by the multi-view midpoint (TriangulateMidpoint); triplets that cannot be
   // triangulated or lie behind a camera are left out. Returns false with message() if the pose is
-  // not finite, |C_2| = 0 or fewer than 3 triplets remain.
+  // not finite, |C_2| <= 1e-12 (no baseline) or overflows, or fewer than 3 triplets remain. Any
+  // finite |C_2| above 1e-12 works: a translation of 1e300 refines as one of 1.
   bool Build(const ThreeViewPose& initial);
   // Build() with known starting points for some triplets, e.g. those of a previous refinement
   // (ThreeViewRefinement::triplets and points_in_cam1): known_points[j] (camera 1's frame, at the

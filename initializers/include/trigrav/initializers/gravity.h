@@ -19,11 +19,12 @@ namespace trigrav {
 // Yaw rotation about the y axis, as above.
 Eigen::Matrix3d RotationAboutY(double theta_rad);
 
-// A rotation taking gravity_in_cam (down, any positive length) onto +y, with rows (r, g, r x g) for
-// a camera axis r made orthogonal to g (derivations.md section 1.3; the identity for g = +y). Any
-// rotation with that property is a valid alignment: two choices differ by a left R_y factor that
-// the yaw absorbs, so this one need not be the smallest such rotation. Throws std::invalid_argument
-// for a zero-length or non-finite vector.
+// A rotation taking gravity_in_cam (down, any length whose square is a positive finite double,
+// about 2e-162 to 1e154) onto +y, with rows (r, g, r x g) for a camera axis r made orthogonal to g
+// (derivations.md section 1.3; the identity for g = +y). Any rotation with that property is a valid
+// alignment: two choices differ by a left R_y factor that the yaw absorbs, so this one need not be
+// the smallest such rotation. Throws std::invalid_argument for a zero, non-finite, too short or too
+// long vector.
 Eigen::Matrix3d GravityAlignmentFromGravity(const Eigen::Vector3d& gravity_in_cam);
 
 // Alignment of a camera whose world-to-camera rotation is R_x(pitch) R_z(roll) R_y(yaw) with the

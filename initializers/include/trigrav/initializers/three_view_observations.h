@@ -10,12 +10,12 @@
 namespace trigrav {
 
 // What a pipeline has for three views: each camera's gravity direction (down, in its own frame,
-// any positive length) and N point triplets, given either as
+// any length whose square is a positive finite double, about 2e-162 to 1e154) and N point
+// triplets, given either as
 //  - pixels with a camera model per view (camera_model.h; a PinholeCamera converts), or
-//  - bearings: unit (any positive length) directions in each camera's frame, for users with a
-//  camera
-//    model of their own. `cameras` are then unused; the errors, thresholds and losses are angles
-//    (observation_residual.h) instead of pixels.
+//  - bearings: unit (any length, as for gravity) directions in each camera's frame, for users
+//    with a camera model of their own. `cameras` are then unused; the errors, thresholds and losses
+//    are angles (observation_residual.h) instead of pixels.
 // Nothing has a usable default: Check() rejects unset cameras (focal length 0) and unset gravity
 // (zero), also for the methods that ignore gravity.
 struct ThreeViewObservations {
@@ -38,7 +38,7 @@ struct ThreeViewObservations {
   // Throws std::invalid_argument naming the problem: sizes differ, pixels and bearings both given,
   // unset or bad camera parameters, non-finite pixels, pixels the camera cannot unproject (beyond
   // a distortion's fold, or so far out that the ray overflows), zero or non-finite bearings, unset
-  // (zero) or non-finite gravity.
+  // (zero) or non-finite gravity, bearings or gravity too short or too long to normalise.
   void Check() const;
 };
 

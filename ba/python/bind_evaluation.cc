@@ -76,19 +76,18 @@ void BindSyntheticScenes(py::module_& m) {
 
   m.def(
       "generate_synthetic_scene",
-      [](const SyntheticSceneOptions& options, std::uint64_t seed) {
+      [](SyntheticSceneOptions options, std::uint64_t seed) {  // a copy: used without the GIL
+        py::gil_scoped_release release;
         std::mt19937_64 rng(seed);
         return GenerateSyntheticScene(options, &rng);
       },
       py::arg_v("options", SyntheticSceneOptions(), "SyntheticSceneOptions()"), py::arg("seed") = 0,
-      py::call_guard<py::gil_scoped_release>(),
       "One scene, drawn with std::mt19937_64(seed) (the C++ GenerateSyntheticScene with that "
       "generator).");
   m.def("to_observations", &ToObservations, py::arg("scene"),
-        py::call_guard<py::gil_scoped_release>(),
         "The scene as a pipeline sees it: cameras, measured gravity, noisy pixels.");
   m.def("to_bearing_observations", &ToBearingObservations, py::arg("scene"),
-        py::call_guard<py::gil_scoped_release>(), "The same as bearings (unit rays), no cameras.");
+        "The same as bearings (unit rays), no cameras.");
 }
 
 void BindMetrics(py::module_& m) {
@@ -149,7 +148,7 @@ void BindMetrics(py::module_& m) {
 
   m.def(
       "three_view_errors",
-      [](const ThreeViewObservations& observations, const ThreeViewPose& pose) {
+      [](ThreeViewObservations observations, ThreeViewPose pose) {  // copies: used without the GIL
         std::vector<double> errors;
         {
           py::gil_scoped_release release;

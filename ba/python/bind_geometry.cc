@@ -123,7 +123,7 @@ void BindCamera(py::module_& m) {
       .def_property_readonly("is_pinhole", &Camera::IsPinhole, "no distortion")
       .def(
           "project",
-          [](const Camera& camera, const py::object& points) {
+          [](Camera camera, const py::object& points) {  // a copy: used without the GIL
             const std::vector<Eigen::Vector3d> in_cam = ToPoints3(points, "points_in_cam");
             std::vector<Eigen::Vector2d> pixels(in_cam.size());
             {
@@ -141,7 +141,7 @@ void BindCamera(py::module_& m) {
           py::arg("points_in_cam"), "N x 3 points (z > 0) in the camera frame -> N x 2 pixels")
       .def(
           "unproject",
-          [](const Camera& camera, const py::object& pixels) {
+          [](Camera camera, const py::object& pixels) {  // a copy: used without the GIL
             const std::vector<Eigen::Vector2d> in_image = ToPoints2(pixels, "pixels");
             std::vector<Eigen::Vector3d> rays(in_image.size());
             {
@@ -257,9 +257,15 @@ void BindObservations(py::module_& m) {
           "3 x 3: row k is gravity (down) in camera k + 1's frame (a copy)")
       .def("has_bearings", &ThreeViewObservations::HasBearings)
       .def("__len__", &ThreeViewObservations::size, "number of triplets")
-      .def("check", &ThreeViewObservations::Check, py::call_guard<py::gil_scoped_release>(),
-           "ValueError naming the problem: sizes differ, unset cameras or gravity, NaN, pixels "
-           "the camera cannot unproject, ...")
+      .def(
+          "check",
+          [](const ThreeViewObservations& o) {
+            const ThreeViewObservations copy = o;  // checked without the GIL
+            py::gil_scoped_release release;
+            copy.Check();
+          },
+          "ValueError naming the problem: sizes differ, unset cameras or gravity, NaN, pixels "
+          "the camera cannot unproject, ...")
       .def("__repr__", [](const ThreeViewObservations& o) {
         return "ThreeViewObservations(" + std::to_string(o.size()) + " triplets as " +
                (o.HasBearings() ? "bearings" : "pixels") + ")";

@@ -5,22 +5,27 @@
 #include <pybind11/stl.h>
 
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
 #include "bindings.h"
 #include "numpy_input.h"
+#include "signal_watch.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/ba/refine_three_view_pose.h"
 #include "trigrav/ba/three_view_bundle_adjustment.h"
 #include "trigrav/ba/three_view_covariance.h"
-#include "trigrav/evaluation/parallel_for.h"
 
 namespace trigrav::python {
 namespace {
 
 using BundleOptions = ThreeViewBundleAdjustmentOptions;
+
+// Both stages of InitializeAndRefine stop when the watch sees a signal.
+void StopOnSignal(const SignalWatch& watch, InitializeAndRefineOptions* options) {
+  options->robust.ransac.stop_requested = watch.StopRequested();
+  options->bundle_adjustment.stop_requested = watch.StopRequested();
+}
 
 void BindBundleAdjustmentOptions(py::module_& m) {
   OptionsClass<BundleOptions> options(
@@ -126,17 +131,24 @@ void BindRefinement(py::module_& m) {
 
   m.def(
       "refine_three_view_pose",
-      [](const ThreeViewObservations& observations, const ThreeViewPose& initial,
-         const py::object& inliers, const BundleOptions& options) {
+      // Arguments by value: the call works on copies another Python thread cannot change.
+      [](ThreeViewObservations observations, ThreeViewPose initial, const py::object& inliers,
+         BundleOptions options) {
         const std::vector<char> mask = ToMask(inliers, "inliers");
-        py::gil_scoped_release release;
-        return RefineThreeViewPose(observations, initial, mask, options);
+        SignalWatch watch;
+        options.stop_requested = watch.StopRequested();
+        ThreeViewRefinement refinement;
+        watch.Run(1, 1, [&](std::size_t) {
+          refinement = RefineThreeViewPose(observations, initial, mask, options);
+        });
+        return refinement;
       },
       py::arg("observations"), py::arg("initial"), py::arg("inliers"),
       py::arg_v("options", BundleOptions(), "ThreeViewBundleAdjustmentOptions()"),
       "Refine-only: one three-view bundle adjustment of `initial` on the triplets whose inliers "
       "entry is set (bool array of len(observations)). ValueError for invalid input; a failure "
-      "gives summary.success = False with the reason.");
+      "gives summary.success = False with the reason. The GIL is released; Ctrl-C raises "
+      "KeyboardInterrupt within about 0.1 s (one solver iteration).");
   m.def(
       "three_view_pose_difference",
       [](BundleOptions::RotationModel model, const ThreeViewPose& pose,
@@ -217,59 +229,75 @@ void BindInitializeAndRefine(py::module_& m) {
                ", message=" + std::string(py::repr(py::str(e.message))) + ")";
       });
 
-  m.def("initialize_and_refine", &InitializeAndRefine, py::arg("observations"),
-        py::arg_v("options", InitializeAndRefineOptions(), "InitializeAndRefineOptions()"),
-        py::call_guard<py::gil_scoped_release>(),
-        "Robust estimate (RANSAC over options.robust.solver) refined by three-view bundle "
-        "adjustment on its inliers. ValueError for invalid observations or options; numerical "
-        "failure gives success = False with a message. The same seed gives bit-identical "
-        "results.");
+  m.def(
+      "initialize_and_refine",
+      // Arguments by value: the call works on copies another Python thread cannot change.
+      [](ThreeViewObservations observations, InitializeAndRefineOptions options) {
+        SignalWatch watch;
+        StopOnSignal(watch, &options);
+        ThreeViewEstimate estimate;
+        watch.Run(1, 1,
+                  [&](std::size_t) { estimate = InitializeAndRefine(observations, options); });
+        return estimate;
+      },
+      py::arg("observations"),
+      py::arg_v("options", InitializeAndRefineOptions(), "InitializeAndRefineOptions()"),
+      "Robust estimate (RANSAC over options.robust.solver) refined by three-view bundle "
+      "adjustment on its inliers. ValueError for invalid observations or options; numerical "
+      "failure gives success = False with a message. The same seed gives bit-identical "
+      "results. The GIL is released; Ctrl-C raises KeyboardInterrupt within about 0.1 s.");
   m.def(
       "initialize_and_refine_batch",
-      [](const py::sequence& batch, const InitializeAndRefineOptions& options, int num_threads) {
+      [](const py::sequence& batch, InitializeAndRefineOptions options, int num_threads,
+         bool return_exceptions) {
         if (num_threads < 0) throw py::value_error("trigrav: num_threads must be >= 0");
-        // The Python objects are held until the end, so the pointers stay valid.
-        std::vector<py::object> held;
-        std::vector<const ThreeViewObservations*> items;
+        // Copies: the calls run without the GIL, while other Python threads may change the items.
+        std::vector<ThreeViewObservations> items;
+        items.reserve(py::len(batch));
         for (std::size_t i = 0; i < py::len(batch); ++i) {
-          held.push_back(batch[i]);
-          const py::object& item = held.back();
+          const py::object item = batch[i];
           if (!py::isinstance<ThreeViewObservations>(item)) {
-            throw py::value_error("trigrav: batch[" + std::to_string(i) +
-                                  "]: expected ThreeViewObservations, got " +
-                                  std::string(py::str(py::type::of(item))));
+            throw py::type_error("trigrav: batch[" + std::to_string(i) +
+                                 "]: expected ThreeViewObservations, got " +
+                                 std::string(py::str(py::type::of(item))));
           }
-          items.push_back(&item.cast<const ThreeViewObservations&>());
+          items.push_back(item.cast<ThreeViewObservations>());
         }
+        SignalWatch watch;
+        StopOnSignal(watch, &options);
         std::vector<ThreeViewEstimate> estimates(items.size());
         std::vector<std::string> errors(items.size());
-        {
-          py::gil_scoped_release release;
-          const int threads =
-              num_threads > 0 ? num_threads
-                              : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-          ParallelFor(items.size(), std::min<int>(threads, static_cast<int>(items.size())),
-                      [&](std::size_t i) {
-                        try {
-                          estimates[i] = InitializeAndRefine(*items[i], options);
-                        } catch (const std::exception& e) {
-                          errors[i] = e.what();
-                        }
-                      });
-        }
-        for (std::size_t i = 0; i < errors.size(); ++i) {
-          if (!errors[i].empty()) {
-            throw py::value_error("trigrav: batch[" + std::to_string(i) + "]: " + errors[i]);
+        watch.Run(items.size(), num_threads, [&](std::size_t i) {
+          try {
+            estimates[i] = InitializeAndRefine(items[i], options);
+          } catch (const std::exception& e) {
+            errors[i] = e.what();
+          }
+        });
+        py::list results;
+        std::string failed;
+        for (std::size_t i = 0; i < items.size(); ++i) {
+          if (errors[i].empty()) {
+            results.append(py::cast(std::move(estimates[i])));
+          } else if (return_exceptions) {
+            results.append(py::reinterpret_steal<py::object>(
+                PyObject_CallFunction(PyExc_ValueError, "s", errors[i].c_str())));
+          } else {
+            failed +=
+                (failed.empty() ? "" : "; ") + ("batch[" + std::to_string(i) + "]: ") + errors[i];
           }
         }
-        return estimates;
+        if (!failed.empty()) throw py::value_error("trigrav: " + failed);
+        return results;
       },
       py::arg("batch"),
       py::arg_v("options", InitializeAndRefineOptions(), "InitializeAndRefineOptions()"),
-      py::arg("num_threads") = 0,
+      py::arg("num_threads") = 0, py::arg("return_exceptions") = false,
       "initialize_and_refine on each ThreeViewObservations of `batch` on num_threads worker "
-      "threads (0: one per core), the GIL released. Returns the list of ThreeViewEstimate, equal "
-      "to the serial calls. ValueError naming the first bad item.");
+      "threads (0: one per core; fewer when the system cannot create them), the GIL released. "
+      "Returns the list of ThreeViewEstimate, equal to the serial calls. An invalid item raises "
+      "ValueError naming every bad index, or with return_exceptions=True takes its place in the "
+      "list as a ValueError instance. Ctrl-C raises KeyboardInterrupt within about 0.1 s.");
 }
 
 }  // namespace

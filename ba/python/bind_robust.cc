@@ -7,6 +7,7 @@
 
 #include "bindings.h"
 #include "numpy_input.h"
+#include "signal_watch.h"
 #include "trigrav/initializers/ransac.h"
 #include "trigrav/initializers/robust_three_view.h"
 
@@ -84,7 +85,8 @@ void BindResults(py::module_& m) {
       .value("OTHER_MOTION", FailureCause::kOtherMotion,
              "a gravity-free model explains more and disagrees")
       .value("REFINEMENT_SHIFT", FailureCause::kRefinementShift,
-             "the refinement moved the verified pose beyond 5 deg");
+             "the refinement moved the verified pose beyond 5 deg")
+      .value("STOPPED", FailureCause::kStopped, "the call was interrupted (Ctrl-C)");
 
   py::class_<RansacStatistics>(m, "RansacStatistics", "What a RANSAC run did.")
       .def_readonly("num_inliers", &RansacStatistics::num_inliers)
@@ -155,12 +157,24 @@ void BindRobust(py::module_& m) {
   BindRansacOptions(m);
   BindRobustOptions(m);
   BindResults(m);
-  m.def("estimate_three_view_pose_robust", &EstimateThreeViewPoseRobust, py::arg("observations"),
-        py::arg_v("options", RobustThreeViewOptions(), "RobustThreeViewOptions()"),
-        py::call_guard<py::gil_scoped_release>(),
-        "RANSAC over the chosen solver, every method scored by the three-view reprojection error "
-        "(pixels; degrees for bearings). ValueError for invalid observations or options; "
-        "numerical failure gives success = False with a message.");
+  m.def(
+      "estimate_three_view_pose_robust",
+      // Arguments by value: the call works on copies another Python thread cannot change.
+      [](ThreeViewObservations observations, RobustThreeViewOptions options) {
+        SignalWatch watch;
+        options.ransac.stop_requested = watch.StopRequested();
+        RobustThreeViewEstimate estimate;
+        watch.Run(1, 1, [&](std::size_t) {
+          estimate = EstimateThreeViewPoseRobust(observations, options);
+        });
+        return estimate;
+      },
+      py::arg("observations"),
+      py::arg_v("options", RobustThreeViewOptions(), "RobustThreeViewOptions()"),
+      "RANSAC over the chosen solver, every method scored by the three-view reprojection error "
+      "(pixels; degrees for bearings). ValueError for invalid observations or options; "
+      "numerical failure gives success = False with a message. The GIL is released; Ctrl-C "
+      "raises KeyboardInterrupt within about 0.1 s.");
 }
 
 }  // namespace trigrav::python

@@ -151,7 +151,7 @@ void BindSolvers(py::module_& m) {
   m.def(
       "solve_trifocal_4pt",
       [](const py::object& x1, const py::object& x2, const py::object& x3, const py::object& g,
-         const Trifocal4ptOptions& options) {
+         Trifocal4ptOptions options) {  // a copy: used without the GIL
         return SolveThreeView(
             x1, x2, x3, g,
             [&options](const Rays& r, auto* s) { SolveTrifocal4pt(r.x1, r.x2, r.x3, options, s); },

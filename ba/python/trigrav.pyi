@@ -244,6 +244,7 @@ class FailureCause:
     NOISY_GRAVITY: ClassVar[FailureCause]
     OTHER_MOTION: ClassVar[FailureCause]
     REFINEMENT_SHIFT: ClassVar[FailureCause]
+    STOPPED: ClassVar[FailureCause]
     def __init__(self, value: int) -> None: ...
     @property
     def name(self) -> str: ...
@@ -478,7 +479,8 @@ def initialize_and_refine_batch(
     batch: Sequence[ThreeViewObservations],
     options: InitializeAndRefineOptions = ...,
     num_threads: int = 0,
-) -> List[ThreeViewEstimate]: ...
+    return_exceptions: bool = False,
+) -> List[Union[ThreeViewEstimate, ValueError]]: ...
 
 class SyntheticSceneOptions:
     num_points: int

@@ -132,6 +132,13 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
     timings.build_s += refinement.build_s;
     timings.solve_s += refinement.solve_s;
     timings.covariance_s += refinement.covariance_s;
+    if (options.bundle_adjustment.stop_requested && options.bundle_adjustment.stop_requested()) {
+      estimate.success = false;
+      estimate.cause = FailureCause::kStopped;
+      estimate.message = "stopped on request (bundle_adjustment.stop_requested)";
+      estimate.timings.total_s = SecondsSince(start);
+      return estimate;
+    }
     if (!refinement.summary.success || !refinement.pose.IsFinite()) {
       if (run == 0) {
         estimate.message =

@@ -41,6 +41,19 @@ ceres::CostFunction* MakeFactor(bool yaw_only,
              : ReprojectionError<Residual>::Create(residual);
 }
 
+// Ends a Ceres solve when the caller's stop_requested says so.
+class StopOnRequest : public ceres::IterationCallback {
+ public:
+  explicit StopOnRequest(const std::function<bool()>& stop_requested)
+      : stop_requested_(stop_requested) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+    return stop_requested_() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const std::function<bool()>& stop_requested_;
+};
+
 constexpr std::pair<ThreeViewBundleAdjustmentOptions::Engine, const char*> kEngineNames[] = {
     {ThreeViewBundleAdjustmentOptions::Engine::kCeres, "ceres"},
     {ThreeViewBundleAdjustmentOptions::Engine::kDedicated, "dedicated"},
@@ -478,7 +491,9 @@ ThreeViewBundleAdjustmentSummary ThreeViewBundleAdjuster::Solve() {
   }
   const std::vector<Eigen::Vector3d> points_backup = points_;
 
-  const ceres::Solver::Options solver_options = options_.CeresSolverOptions();
+  ceres::Solver::Options solver_options = options_.CeresSolverOptions();
+  StopOnRequest stop_on_request(options_.stop_requested);
+  if (options_.stop_requested) solver_options.callbacks.push_back(&stop_on_request);
   std::string error;
   if (!solver_options.IsValid(&error)) {
     out.message = "invalid Ceres options: " + error;
@@ -503,11 +518,13 @@ ThreeViewBundleAdjustmentSummary ThreeViewBundleAdjuster::Solve() {
   }
   out.solve_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!summary.IsSolutionUsable() || !CurrentPose().IsFinite()) {
-    out.message = (options_.engine == ThreeViewBundleAdjustmentOptions::Engine::kDedicated
-                       ? "the dedicated solver failed: "
-                       : "Ceres failed: ") +
-                  summary.message;
+  const bool stopped = options_.stop_requested && options_.stop_requested();
+  if (stopped || !summary.IsSolutionUsable() || !CurrentPose().IsFinite()) {
+    out.message = stopped ? std::string("stopped on request (stop_requested)")
+                          : (options_.engine == ThreeViewBundleAdjustmentOptions::Engine::kDedicated
+                                 ? "the dedicated solver failed: "
+                                 : "Ceres failed: ") +
+                                summary.message;
     for (int j = 0; j < 2; ++j) {
       yaw_[j] = yaw_backup[j];
       for (int i = 0; i < 4; ++i) quaternion_[j][i] = quaternion_backup[j][i];

@@ -708,6 +708,10 @@ void Engine<Residual, kRot>::Solve(ceres::Solver::Summary* summary) {
     }
     iteration.trust_region_radius = radius;
     summary->iterations.push_back(iteration);
+    if (options_.stop_requested && options_.stop_requested()) {
+      finish(ceres::USER_FAILURE, "stopped on request");
+      return;
+    }
     if (iteration.iteration >= o.max_num_iterations) {
       std::snprintf(message, sizeof(message),
                     "Maximum number of iterations reached. Number of iterations: %d.",

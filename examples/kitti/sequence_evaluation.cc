@@ -7,7 +7,8 @@
 #include <mutex>
 #include <utility>
 
-#include "trigrav/evaluation/parallel_for.h"
+#include "../common/thread_note.h"
+#include "trigrav/initializers/parallel_for.h"
 
 namespace trigrav::kitti {
 namespace {
@@ -78,18 +79,19 @@ bool EvaluateSequence(const KittiSequence& sequence,
     const TripletSource cache_filler(sequence, imu_gravity, options.cache_dir, options.sift,
                                      options.match);
     Progress progress(options.show_progress, "features (frames)", sequence.num_frames());
-    ParallelFor(sequence.num_frames(), options.threads, [&](std::size_t i) {
-      if (first_error.failed()) return;
-      const auto start = std::chrono::steady_clock::now();
-      bool detected = false;
-      std::string message;
-      if (!cache_filler.CacheFrame(sequence.first_frame + static_cast<int>(i), &detected,
-                                   &message)) {
-        first_error.Set(message);
-      }
-      if (detected) evaluation->detect_ms[i] = 1e3 * SecondsSince(start);
-      progress.Step();
-    });
+    examples::NoteFewerThreads(
+        ParallelFor(sequence.num_frames(), options.threads, [&](std::size_t i) {
+          if (first_error.failed()) return;
+          const auto start = std::chrono::steady_clock::now();
+          bool detected = false;
+          std::string message;
+          if (!cache_filler.CacheFrame(sequence.first_frame + static_cast<int>(i), &detected,
+                                       &message)) {
+            first_error.Set(message);
+          }
+          if (detected) evaluation->detect_ms[i] = 1e3 * SecondsSince(start);
+          progress.Step();
+        }));
   }
   evaluation->features_wall_s = SecondsSince(features_start);
 
@@ -102,7 +104,7 @@ bool EvaluateSequence(const KittiSequence& sequence,
   evaluation->triplets.resize(num_triplets);
   if (!first_error.failed()) {
     Progress progress(options.show_progress, "triplets", num_triplets);
-    ParallelFor(num_chunks, options.threads, [&](std::size_t c) {
+    examples::NoteFewerThreads(ParallelFor(num_chunks, options.threads, [&](std::size_t c) {
       TripletSource source(sequence, imu_gravity, options.cache_dir, options.sift, options.match);
       const int end = std::min(num_triplets, static_cast<int>(c + 1) * chunk);
       for (int t = static_cast<int>(c) * chunk; t < end && !first_error.failed(); ++t) {
@@ -126,7 +128,7 @@ bool EvaluateSequence(const KittiSequence& sequence,
         evaluation->triplets[t] = std::move(triplet);
         progress.Step();
       }
-    });
+    }));
   }
   evaluation->triplets_wall_s = SecondsSince(triplets_start);
   if (first_error.failed()) {

@@ -30,14 +30,15 @@
 #include <string>
 #include <vector>
 
+#include "../common/thread_note.h"
 #include "common/require_flag.h"
 #include "peer_estimators.h"
-#include "trigrav/evaluation/parallel_for.h"
 #include "trigrav/evaluation/pooled_errors.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/robust_benchmark_scenes.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"
+#include "trigrav/initializers/parallel_for.h"
 
 DEFINE_int32(solver_problems, 1000, "(a) Noise-free problems for the minimal solvers.");
 DEFINE_int32(solver_passes, 21, "(a) Timed passes over the problems; the median pass counts.");
@@ -333,11 +334,12 @@ void RunAccuracy() {
   all.insert(all.end(), peers.begin(), peers.end());
 
   std::vector<std::vector<EstimatorResult>> results(scenes.size());
-  trigrav::ParallelFor(scenes.size(), FLAGS_threads, [&](std::size_t s) {
-    const trigrav::ThreeViewObservations observations = trigrav::ToObservations(scenes[s]);
-    for (const NamedEstimator& e : all)
-      results[s].push_back(e.estimate(observations, FLAGS_accuracy_threshold_px));
-  });
+  trigrav::examples::NoteFewerThreads(
+      trigrav::ParallelFor(scenes.size(), FLAGS_threads, [&](std::size_t s) {
+        const trigrav::ThreeViewObservations observations = trigrav::ToObservations(scenes[s]);
+        for (const NamedEstimator& e : all)
+          results[s].push_back(e.estimate(observations, FLAGS_accuracy_threshold_px));
+      }));
   std::vector<Errors> errors(all.size());
   for (std::size_t s = 0; s < scenes.size(); ++s) {
     for (std::size_t e = 0; e < all.size(); ++e)

@@ -107,6 +107,8 @@ const char* FailureCauseName(FailureCause cause) {
       return "other-motion";
     case FailureCause::kRefinementShift:
       return "refinement-shift";
+    case FailureCause::kStopped:
+      return "stopped";
   }
   throw std::invalid_argument("trigrav: unknown FailureCause value");
 }
@@ -176,6 +178,15 @@ RobustThreeViewEstimate EstimateThreeViewPoseRobust(const ThreeViewObservations&
   RansacOptions ransac = options.ransac;
   ransac.max_error = options.InlierThreshold(observations);
   RobustThreeViewEstimate estimate = run(data, ransac);
+  // A stopped run never succeeds, also when the stop came during the verdict's own RANSAC.
+  const auto stopped = [&] {
+    if (!(ransac.stop_requested && ransac.stop_requested())) return false;
+    estimate = RobustThreeViewEstimate();
+    estimate.cause = FailureCause::kStopped;
+    estimate.message = "stopped on request (ransac.stop_requested)";
+    return true;
+  };
+  if (stopped()) return estimate;
   internal::VerdictSettings verdict;
   verdict.sample_size = info.sample_size;
   verdict.max_models_per_sample = info.max_models_per_sample;
@@ -190,6 +201,7 @@ RobustThreeViewEstimate EstimateThreeViewPoseRobust(const ThreeViewObservations&
   verdict.max_pose_sigma_deg = options.max_pose_sigma_deg;
   verdict.min_inliers = options.min_inliers;
   internal::JudgeEstimate(data, observations, ransac, verdict, &estimate);
+  stopped();
   return estimate;
 }
 

@@ -225,9 +225,11 @@ void JudgeEstimate(const TripletData& data,
   }
   const bool compare_gravity =
       settings.uses_gravity && std::isfinite(settings.max_gravity_inconsistency_deg);
+  // Between the stages below; the caller turns a stopped verdict into a failure.
+  const auto stop_requested = [&] { return ransac.stop_requested && ransac.stop_requested(); };
 
   if (below_floor) {
-    if (compare_gravity) {
+    if (compare_gravity && !stop_requested()) {
       // At most the samples the gravity-aware method's floor needs: enough for the gravity-free
       // models that explain most triplets, the ones that show a gravity mistake.
       RansacOptions free = ransac;
@@ -275,12 +277,14 @@ void JudgeEstimate(const TripletData& data,
          estimate);
     return;
   }
+  if (stop_requested()) return;
   // 3. Is camera 2's centre, which sets the scale, observable? (robust_three_view.h)
   RejectWithoutParallax(data, ransac.max_error, estimate);
   if (!estimate->success) {
     estimate->cause = FailureCause::kNoParallax;
     return;
   }
+  if (stop_requested()) return;
   // 4. Do the inliers pin the pose down? (predicted precision at sigma = threshold / 3)
   const std::array<double, 3> units = ThresholdUnitsPerRadian(observations);
   const PosePrecision precision =
@@ -302,11 +306,13 @@ void JudgeEstimate(const TripletData& data,
   }
   // 5. Does a gravity-free model explain clearly more triplets? Its search needs only the samples
   // that find such a model, none when the gravity-aware one leaves fewer than the margin.
-  if (!compare_gravity || !settings.check_gravity_after_success) return;
+  if (!compare_gravity || !settings.check_gravity_after_success || stop_requested()) return;
   const int target = k + ClearMargin(n);
   RobustThreeViewEstimate free;
   if (!CompareWithGravityFree(data, ransac, target, estimate, &free)) return;
-  if (!estimate->gravity.measured || estimate->gravity.num_inliers < target) return;
+  if (!estimate->gravity.measured || estimate->gravity.num_inliers < target || stop_requested()) {
+    return;
+  }
   // The two estimates disagree when they differ by more than 3 standard deviations of their
   // difference (each predicted as in step 4, the gravity-free one with free rotations), and more
   // than the bounds.

@@ -113,7 +113,7 @@ def test_cameras_solvers_and_masks(observations):
 
 
 def test_batch_names_the_bad_item(scene, observations):
-    with pytest.raises(ValueError, match=r"batch\[1\]: expected ThreeViewObservations"):
+    with pytest.raises(TypeError, match=r"batch\[1\]: expected ThreeViewObservations"):
         trigrav.initialize_and_refine_batch([observations, 5])
     bad = observations_from_numpy(scene)
     bad.gravity_in_cam = np.zeros((3, 3))

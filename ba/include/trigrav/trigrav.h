@@ -3,7 +3,8 @@
 
 // Umbrella header: every public header of trigrav (target trigrav::trigrav).
 
-// trigrav::initializers: poses, observations, gravity, the minimal solvers, RANSAC.
+// trigrav::initializers: poses, observations, gravity, the minimal solvers, RANSAC, the worker
+// pool.
 #include "trigrav/initializers/camera_model.h"
 #include "trigrav/initializers/camera_pose.h"
 #include "trigrav/initializers/essential_5pt.h"
@@ -11,6 +12,7 @@
 #include "trigrav/initializers/gravity.h"
 #include "trigrav/initializers/initial_solver.h"
 #include "trigrav/initializers/observation_residual.h"
+#include "trigrav/initializers/parallel_for.h"
 #include "trigrav/initializers/ransac.h"
 #include "trigrav/initializers/robust_three_view.h"
 #include "trigrav/initializers/three_view_error.h"
@@ -21,7 +23,6 @@
 #include "trigrav/initializers/two_view_to_three_view.h"
 
 // trigrav::evaluation: synthetic scenes, error metrics, statistics, trajectories.
-#include "trigrav/evaluation/parallel_for.h"
 #include "trigrav/evaluation/pooled_errors.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"

@@ -10,6 +10,7 @@
 #include <ceres/types.h>
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -99,6 +100,10 @@ struct ThreeViewBundleAdjustmentOptions {
   double function_tolerance = 1e-8;
   double gradient_tolerance = 1e-10;
   double parameter_tolerance = 1e-10;
+  // When set, called after each iteration (every engine, from the thread that calls Solve()); true
+  // ends the solve as a failure ("stopped on request"), the pose and points restored. For a caller
+  // that must cancel a long solve from another thread. It must be cheap and must not throw.
+  std::function<bool()> stop_requested;
 
   // Throws std::invalid_argument naming the first bad field (non-positive or non-finite scales and
   // sigmas, negative counts or tolerances, NaN tolerances, enum values out of range: engine,

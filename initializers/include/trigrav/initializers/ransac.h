@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <random>
 #include <stdexcept>
@@ -39,6 +40,10 @@ struct RansacOptions {
   bool local_optimization = true;
   int local_optimization_rounds = 3;
   double local_optimization_threshold_multiplier = 3.0;
+  // When set, called before each sample (from the calling thread); true ends the run as a failure
+  // ("stopped on request"). For a caller that must cancel a long run from another thread, e.g. on
+  // Python's Ctrl-C. It must be cheap and must not throw.
+  std::function<bool()> stop_requested;
 
   // Throws std::invalid_argument naming the first bad field.
   void Check() const;
@@ -243,6 +248,11 @@ RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
   for (report.statistics.iterations = 0;
        report.statistics.iterations < std::min(required, options.max_iterations);
        ++report.statistics.iterations) {
+    if (options.stop_requested && options.stop_requested()) {
+      report.message =
+          "stopped on request after " + std::to_string(report.statistics.iterations) + " samples";
+      return report;
+    }
     internal::DrawSample<kSampleSize>(static_cast<int>(n), &rng, &sample);
     models.clear();
     estimator.generate_models(sample, &models);
@@ -253,6 +263,7 @@ RansacReport<typename Estimator::Model> Ransac(const Estimator& estimator,
     Model current = report.model;
     const std::vector<double>* current_errors = &best_errors;
     for (int round = 0; round < options.local_optimization_rounds; ++round) {
+      if (options.stop_requested && options.stop_requested()) break;
       const double fraction =
           options.local_optimization_rounds > 1
               ? static_cast<double>(round) / (options.local_optimization_rounds - 1)

@@ -140,6 +140,8 @@ enum class FailureCause {
   kNoisyGravity,        // the gravity is noisier than the rotation model allows
   kOtherMotion,         // a gravity-free model explains more and disagrees: intrinsics or order
   kRefinementShift,     // InitializeAndRefine: the refinement moved the verified pose beyond 5 deg
+  kStopped,             // the caller's stop_requested returned true (RansacOptions,
+                        // ThreeViewBundleAdjustmentOptions): the call ended early
 };
 const char* FailureCauseName(FailureCause cause);
 

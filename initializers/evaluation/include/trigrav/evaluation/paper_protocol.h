@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "trigrav/evaluation/parallel_for.h"
 #include "trigrav/evaluation/pooled_errors.h"
 #include "trigrav/initializers/camera_pose.h"
+#include "trigrav/initializers/parallel_for.h"
 
 namespace trigrav {
 

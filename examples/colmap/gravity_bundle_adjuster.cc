@@ -21,7 +21,9 @@
 #include <string>
 #include <vector>
 
+#include "common/output_paths.h"
 #include "common/require_flag.h"
+#include "model_folder.h"
 #include "nview_conversion.h"
 #include "staged_file.h"
 #include "trigrav/ba/nview_bundle_adjustment.h"
@@ -33,7 +35,10 @@ DEFINE_string(gravity_csv,
               "",
               "Gravity per image (trigrav/colmap/gravity_csv.h); every image of the model needs "
               "one (required).");
-DEFINE_string(output_path, "", "Folder (created) for the refined model (required).");
+DEFINE_string(output_path,
+              "",
+              "Folder (created, or replaced as a whole when it holds a model only) for the "
+              "refined model (required).");
 DEFINE_string(output_format, "binary", "Format of the written model: binary or text.");
 DEFINE_string(rotation_model,
               "gravity_prior",
@@ -80,6 +85,12 @@ void CheckFlags() {
               "--pixel_sigma_px must be positive and finite");
   RequireFlag(FLAGS_max_iterations >= 0, "--max_iterations must be >= 0");
   RequireFlag(FLAGS_threads >= 1 && FLAGS_threads <= 256, "--threads must be in [1, 256]");
+  using trigrav::examples::ToolPath;
+  std::vector<ToolPath> outputs = {{"--output_path", FLAGS_output_path, ToolPath::kFolder}};
+  if (!FLAGS_covariance_csv.empty()) outputs.push_back({"--covariance_csv", FLAGS_covariance_csv});
+  trigrav::examples::RequireOutputsApartFromInputs(
+      {{"--input_path", FLAGS_input_path, ToolPath::kFolder}, {"--gravity_csv", FLAGS_gravity_csv}},
+      outputs);
 }
 
 Options AdjusterOptions() {
@@ -148,8 +159,7 @@ int Run() {
     covariance_csv = std::make_unique<tools::StagedFile>(
         FLAGS_covariance_csv, FormatCovarianceCsv(result, input, summary));
   }
-  fs::create_directories(FLAGS_output_path);
-  colmap::WriteModel(
+  tools::WriteModelFolder(
       result, FLAGS_output_path,
       FLAGS_output_format == "text" ? colmap::ModelFormat::kText : colmap::ModelFormat::kBinary);
   if (covariance_csv) {

@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "common/output_paths.h"
 #include "common/require_flag.h"
 #include "trigrav/colmap/gravity_csv.h"
 
@@ -148,6 +149,10 @@ int main(int argc, char** argv) {
   RequireFlag(!FLAGS_output_path.empty(), "--output_path is required");
   RequireFlag(FLAGS_noise_deg >= 0.0 && std::isfinite(FLAGS_noise_deg),
               "--noise_deg must be finite and >= 0");
+  using trigrav::examples::ToolPath;
+  trigrav::examples::RequireOutputsApartFromInputs(
+      {{"--poses_path", FLAGS_poses_path}, {"--image_path", FLAGS_image_path, ToolPath::kFolder}},
+      {{"--output_path", FLAGS_output_path}});
   try {
     Run();
   } catch (const std::exception& error) {

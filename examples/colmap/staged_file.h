@@ -2,8 +2,8 @@
 #define TRIGRAV_EXAMPLES_COLMAP_STAGED_FILE_H_
 
 // An output file written in two steps, so that a tool that fails leaves no partial output: the
-// contents go to "<path>.tmp" on construction, Commit() renames that onto `path`; destroyed before
-// Commit(), the temporary file is removed.
+// contents go to "<path>.tmp" and are flushed to the disk on construction, Commit() renames that
+// onto `path` and flushes the folder; destroyed before Commit(), the temporary file is removed.
 
 #include <string>
 

@@ -18,21 +18,23 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "../common/thread_note.h"
+#include "common/output_paths.h"
 #include "common/require_flag.h"
 #include "match_graph.h"
+#include "model_folder.h"
 #include "staged_file.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/ba/three_view_bundle_adjustment.h"
 #include "trigrav/colmap/database.h"
 #include "trigrav/colmap/gravity_csv.h"
 #include "trigrav/colmap/model_io.h"
-#include "trigrav/evaluation/parallel_for.h"
 #include "trigrav/initializers/initial_solver.h"
+#include "trigrav/initializers/parallel_for.h"
 #include "triplet_csv.h"
 #include "triplet_model.h"
 
@@ -44,8 +46,8 @@ DEFINE_string(gravity_csv,
 DEFINE_string(output_csv, "", "Per-triplet CSV to write (required).");
 DEFINE_string(output_model_path,
               "",
-              "Folder (created) for the binary COLMAP model of the best trusted triplet "
-              "(required).");
+              "Folder (created, or replaced as a whole when it holds a model only) for the binary "
+              "COLMAP model of the best trusted triplet (required).");
 DEFINE_string(triplets,
               "consecutive",
               "consecutive: (i, i+1, i+2) of the images sorted by name (a sequence); connected: "
@@ -123,6 +125,11 @@ void CheckFlags() {
   RequireFlag(trigrav::ParseEngine(FLAGS_engine, &engine),
               "--engine must be " + trigrav::EngineNames());
   RequireFlag(FLAGS_threads >= 1 && FLAGS_threads <= 256, "--threads must be in [1, 256]");
+  using trigrav::examples::ToolPath;
+  trigrav::examples::RequireOutputsApartFromInputs(
+      {{"--database_path", FLAGS_database_path}, {"--gravity_csv", FLAGS_gravity_csv}},
+      {{"--output_csv", FLAGS_output_csv},
+       {"--output_model_path", FLAGS_output_model_path, ToolPath::kFolder}});
 }
 
 // The database's images sorted by name.
@@ -205,19 +212,9 @@ int Run() {
     result.estimate = trigrav::InitializeAndRefine(observations, triplet_options);
     result.estimated = true;
   };
-  // An exception must not leave a worker thread (std::terminate): the first one is kept and
-  // rethrown after the join.
-  std::exception_ptr worker_error;
-  std::mutex worker_error_mutex;
-  trigrav::ParallelFor(triplets.size(), FLAGS_threads, [&](std::size_t i) {
-    try {
-      estimate_triplet(i);
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(worker_error_mutex);
-      if (!worker_error) worker_error = std::current_exception();
-    }
-  });
-  if (worker_error) std::rethrow_exception(worker_error);
+  // The pool rethrows a worker's exception after joining every thread.
+  trigrav::examples::NoteFewerThreads(
+      trigrav::ParallelFor(triplets.size(), FLAGS_threads, estimate_triplet));
   // Committed after the model (or alone when there is none): a failure leaves no CSV.
   tools::StagedFile csv(FLAGS_output_csv,
                         tools::FormatTripletCsv(results, options.bundle_adjustment.rotation_model));
@@ -244,8 +241,7 @@ int Run() {
   for (int k = 0; k < 3; ++k) seed_keypoints[k] = keypoints.at(seed.images[k].image_id);
   const colmap::Reconstruction model =
       tools::TripletModel(cameras, seed.images, seed_keypoints, tracks[best], seed.estimate);
-  fs::create_directories(FLAGS_output_model_path);
-  colmap::WriteModel(model, FLAGS_output_model_path, colmap::ModelFormat::kBinary);
+  tools::WriteModelFolder(model, FLAGS_output_model_path, colmap::ModelFormat::kBinary);
   csv.Commit();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -41,14 +41,15 @@
 #include <string>
 #include <vector>
 
+#include "common/output_paths.h"
 #include "common/require_flag.h"
 #include "trigrav/evaluation/paper_protocol.h"
-#include "trigrav/evaluation/parallel_for.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"
 #include "trigrav/initializers/essential_5pt.h"
 #include "trigrav/initializers/essential_8pt.h"
+#include "trigrav/initializers/parallel_for.h"
 #include "trigrav/initializers/robust_three_view.h"
 #include "trigrav/initializers/trifocal_3pt.h"
 #include "trigrav/initializers/trifocal_4pt.h"
@@ -390,6 +391,15 @@ int main(int argc, char** argv) {
   // Up to 100 x the paper's trial counts (500000 scenes per level) keeps every count an int.
   RequireFlag(FLAGS_trials > 0.0 && FLAGS_trials <= 100.0, "--trials must be in (0, 100]");
   // Checked before the run, so that a bad folder fails at once, not after the experiments.
+  std::vector<trigrav::examples::ToolPath> outputs;
+  for (const std::string name : {"stability_summary", "stability_histogram", "timing"}) {
+    outputs.push_back({name + ".csv of --output_dir", FLAGS_output_dir + "/" + name + ".csv"});
+  }
+  for (const PaperExperiment experiment : kExperiments) {
+    const std::string name = trigrav::PaperExperimentName(experiment);
+    outputs.push_back({name + ".csv of --output_dir", FLAGS_output_dir + "/" + name + ".csv"});
+  }
+  trigrav::examples::RequireOutputsApartFromInputs({}, outputs);
   ::mkdir(FLAGS_output_dir.c_str(), 0755);
   struct stat folder;
   RequireFlag(::stat(FLAGS_output_dir.c_str(), &folder) == 0 && S_ISDIR(folder.st_mode) &&

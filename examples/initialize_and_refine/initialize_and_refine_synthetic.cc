@@ -40,15 +40,17 @@
 #include <string>
 #include <vector>
 
+#include "../common/thread_note.h"
+#include "common/output_paths.h"
 #include "common/require_flag.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/ba/three_view_bundle_adjustment.h"
 #include "trigrav/evaluation/paper_protocol.h"
-#include "trigrav/evaluation/parallel_for.h"
 #include "trigrav/evaluation/pooled_errors.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"
+#include "trigrav/initializers/parallel_for.h"
 
 #ifdef TRIGRAV_WITH_PEERS
 #include "peer_estimators.h"
@@ -383,10 +385,11 @@ void RunSweep(std::ofstream* csv) {
   const std::vector<Setting> settings = SweepSettings();
   std::vector<SweepResult> results(settings.size());
   std::atomic<std::size_t> done{0};
-  trigrav::ParallelFor(settings.size(), FLAGS_threads, [&](std::size_t i) {
-    results[i] = RunSetting(settings[i]);
-    std::fprintf(stderr, "\r%zu / %zu settings", ++done, settings.size());
-  });
+  trigrav::examples::NoteFewerThreads(
+      trigrav::ParallelFor(settings.size(), FLAGS_threads, [&](std::size_t i) {
+        results[i] = RunSetting(settings[i]);
+        std::fprintf(stderr, "\r%zu / %zu settings", ++done, settings.size());
+      }));
   std::fprintf(stderr, "\n");
 
   *csv << "solver,model,noise_px,imu_deg,trials,failures,raw_rotation_deg,raw_translation_deg,"
@@ -551,6 +554,7 @@ int main(int argc, char** argv) {
               "--threshold_sigmas must be positive and finite");
   RequireFlag(!FLAGS_peers || kBuiltWithPeers, "--peers: built without OpenCV and OpenGV");
   if (FLAGS_output.empty()) FLAGS_output = FLAGS_experiment + ".csv";
+  trigrav::examples::RequireOutputsApartFromInputs({}, {{"--output", FLAGS_output}});
   // Opened before the run, so that an unwritable path fails at once, not after the experiment.
   std::ofstream csv(FLAGS_output);
   RequireFlag(static_cast<bool>(csv), "cannot write --output=" + FLAGS_output);

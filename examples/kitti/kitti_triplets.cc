@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "common/output_paths.h"
 #include "common/require_flag.h"
 #include "kitti_methods.h"
 #include "kitti_report.h"
@@ -116,7 +117,12 @@ namespace {
 namespace fs = std::filesystem;
 namespace kitti = trigrav::kitti;
 using trigrav::InitialSolver;
+using trigrav::examples::IsWithin;
 using trigrav::examples::RequireFlag;
+
+// The files written to --output_dir.
+constexpr const char* kOutputCsvs[] = {"poses.csv", "summary.csv", "trajectories.csv",
+                                       "frames.csv"};
 
 // Exact gravity: the size of the disagreement between the images and the ground-truth tilt.
 constexpr double kExactGravitySigmaDeg = 0.03;
@@ -129,21 +135,6 @@ std::vector<std::string> SplitCommas(const std::string& list) {
     if (!item.empty()) items.push_back(item);
   }
   return items;
-}
-
-// True when `path` is `folder` or below it (after resolving symlinks, "." and ".."); false when
-// either cannot be resolved.
-bool IsInside(const fs::path& path, const fs::path& folder) {
-  std::error_code ec_path, ec_folder;
-  const fs::path p = fs::weakly_canonical(path, ec_path);
-  const fs::path f = fs::weakly_canonical(folder, ec_folder);
-  if (ec_path || ec_folder) return false;
-  auto pi = p.begin();
-  for (auto fi = f.begin(); fi != f.end(); ++fi, ++pi) {
-    if (fi->empty()) continue;  // trailing separator
-    if (pi == p.end() || *pi != *fi) return false;
-  }
-  return true;
 }
 
 // The gravity-prior refinement's sigma (deg): --gravity_sigma_deg, else the IMU noise, else the
@@ -164,10 +155,18 @@ void ValidateFlags() {
   RequireFlag(FLAGS_first_frame >= 0, "--first_frame must be >= 0");
   RequireFlag(FLAGS_last_frame >= FLAGS_first_frame + 2,
               "--last_frame must be at least --first_frame + 2 (one triplet)");
-  RequireFlag(FLAGS_cache_dir.empty() || !IsInside(FLAGS_cache_dir, FLAGS_kitti_dir),
+  RequireFlag(FLAGS_cache_dir.empty() || !IsWithin(FLAGS_cache_dir, FLAGS_kitti_dir),
               "--cache_dir (" + FLAGS_cache_dir + ") must not be inside the dataset --kitti_dir");
-  RequireFlag(!IsInside(FLAGS_output_dir, FLAGS_kitti_dir),
+  RequireFlag(!IsWithin(FLAGS_output_dir, FLAGS_kitti_dir),
               "--output_dir must not be inside the dataset --kitti_dir");
+  // The CSVs, apart from the dataset and from --flagfile's files.
+  std::vector<trigrav::examples::ToolPath> outputs;
+  for (const char* file : kOutputCsvs) {
+    outputs.push_back(
+        {std::string(file) + " of --output_dir", (fs::path(FLAGS_output_dir) / file).string()});
+  }
+  trigrav::examples::RequireOutputsApartFromInputs(
+      {{"--kitti_dir", FLAGS_kitti_dir, trigrav::examples::ToolPath::kFolder}}, outputs);
   RequireFlag(FLAGS_threshold_px > 0.0 && std::isfinite(FLAGS_threshold_px),
               "--threshold_px must be positive and finite");
   RequireFlag(FLAGS_confidence > 0.0 && FLAGS_confidence < 1.0, "--confidence must be in (0, 1)");

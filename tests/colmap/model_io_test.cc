@@ -249,8 +249,11 @@ TEST(ModelIo, MissingFilesAndFolders) {
   WriteText(folder + "/images.txt", kImagesTxt);
   EXPECT_THAT([&] { ReadModel(folder); },
               ThrowsMessage<std::runtime_error>(HasSubstr("points3D.txt: no such file")));
-  EXPECT_THAT([&] { WriteModel(SyntheticModel(), folder + "/nowhere", ModelFormat::kBinary); },
-              ThrowsMessage<std::runtime_error>(HasSubstr("no such folder")));
+  EXPECT_THAT([&] { WriteModel(SyntheticModel(), folder + "/no/where", ModelFormat::kBinary); },
+              ThrowsMessage<std::runtime_error>(HasSubstr("no/where: no such folder")));
+  // A missing folder whose parent exists is created.
+  WriteModel(SyntheticModel(), folder + "/new", ModelFormat::kBinary);
+  EXPECT_EQ(ReadModel(folder + "/new").images.size(), 4u);
 }
 
 TEST(ModelIo, TruncatedBinaryFilesAreRejected) {
@@ -431,7 +434,8 @@ TEST(ModelIo, AFailedWriteLeavesTheModelAsItWas) {
   for (const auto& entry : std::filesystem::directory_iterator(folder)) {
     files.push_back(entry.path().filename().string());
   }
-  EXPECT_THAT(files, ::testing::UnorderedElementsAre("cameras.txt", "images.txt", "points3D.txt"));
+  EXPECT_THAT(files, ::testing::UnorderedElementsAre("cameras.txt", "images.txt", "points3D.txt",
+                                                     "trigrav_model_set.txt"));
   // Binary keeps names with spaces (they end at '\0').
   const std::string binary = ScratchFolder("_binary");
   WriteModel(spaced, binary, ModelFormat::kBinary);

@@ -1,17 +1,41 @@
 #include "file_io.h"
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 
 namespace trigrav {
 namespace colmap {
 namespace internal {
+namespace {
+
+std::runtime_error ErrnoError(const std::string& path, const std::string& what) {
+  return std::runtime_error(path + ": " + what + " (" + std::strerror(errno) + ")");
+}
+
+// Writes all of `contents` to `fd` and flushes it; false with errno set on an error.
+bool WriteAllAndSync(int fd, const std::string& contents) {
+  std::size_t done = 0;
+  while (done < contents.size()) {
+    const ssize_t written = ::write(fd, contents.data() + done, contents.size() - done);
+    if (written < 0 && errno == EINTR) continue;
+    if (written <= 0) return false;
+    done += static_cast<std::size_t>(written);
+  }
+  return ::fsync(fd) == 0;
+}
+
+}  // namespace
 
 bool FileExists(const std::string& path) {
   struct stat info;
@@ -27,29 +51,71 @@ std::string ReadFileContents(const std::string& path) {
   return contents.str();
 }
 
-void WriteFilesAtomically(const std::vector<std::pair<std::string, std::string>>& files) {
-  std::vector<std::string> temporaries;
-  const auto remove_temporaries = [&temporaries] {
-    for (const std::string& temporary : temporaries) std::remove(temporary.c_str());
-  };
-  for (const auto& [path, contents] : files) {
-    const std::string temporary = path + ".tmp";
-    temporaries.push_back(temporary);
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    file.write(contents.data(), static_cast<std::streamsize>(contents.size()));
-    file.close();
-    if (!file) {
-      remove_temporaries();
-      throw std::runtime_error(temporary + ": cannot be written");
-    }
+void WriteNewFileSynced(const std::string& path, const std::string& contents) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) throw ErrnoError(path, "cannot be written");
+  const bool ok = WriteAllAndSync(fd, contents);
+  const int saved_errno = errno;
+  if (::close(fd) != 0 || !ok) {
+    if (!ok) errno = saved_errno;
+    throw ErrnoError(path, "cannot be written");
   }
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    if (std::rename(temporaries[i].c_str(), files[i].first.c_str()) != 0) {
-      const std::string reason = std::strerror(errno);
-      remove_temporaries();
-      throw std::runtime_error(files[i].first + ": cannot be renamed into place (" + reason + ")");
-    }
+}
+
+void SyncFolder(const std::string& folder) {
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) throw ErrnoError(folder, "cannot be opened to flush it");
+  const bool ok = ::fsync(fd) == 0;
+  const int saved_errno = errno;
+  ::close(fd);
+  errno = saved_errno;
+  if (!ok) throw ErrnoError(folder, "cannot be flushed");
+}
+
+std::string ParentFolder(const std::string& path) {
+  std::string trimmed = path;
+  while (trimmed.size() > 1 && trimmed.back() == '/') trimmed.pop_back();
+  const std::size_t slash = trimmed.rfind('/');
+  if (slash == std::string::npos) return ".";
+  return slash == 0 ? "/" : trimmed.substr(0, slash);
+}
+
+std::string CreateUniquely(const std::string& prefix,
+                           const std::function<bool(const char*)>& create) {
+  static constexpr char kLetters[] = "abcdefghijklmnopqrstuvwxyz0123456789";
+  static std::atomic<unsigned> counter{0};
+  std::mt19937 random(std::random_device{}() ^ (static_cast<unsigned>(::getpid()) << 8) ^
+                      counter.fetch_add(1));
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    std::string name = prefix;
+    for (int i = 0; i < 6; ++i) name += kLetters[random() % (sizeof(kLetters) - 1)];
+    if (create(name.c_str())) return name;
+    if (errno != EEXIST) break;
   }
+  throw ErrnoError(prefix + "XXXXXX", "cannot be created");
+}
+
+void WriteFileAtomically(const std::string& path, const std::string& contents) {
+  int fd = -1;
+  std::string temporary;
+  try {
+    temporary = CreateUniquely(path + ".tmp-", [&fd](const char* name) {
+      fd = ::open(name, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+      return fd >= 0;
+    });
+  } catch (const std::runtime_error&) {
+    throw ErrnoError(path, "cannot be written");
+  }
+  bool ok = WriteAllAndSync(fd, contents);
+  ok = ::close(fd) == 0 && ok;
+  ok = ok && std::rename(temporary.c_str(), path.c_str()) == 0;
+  if (!ok) {
+    const int saved_errno = errno;
+    std::remove(temporary.c_str());
+    errno = saved_errno;
+    throw ErrnoError(path, "cannot be written");
+  }
+  SyncFolder(ParentFolder(path));
 }
 
 }  // namespace internal

@@ -91,7 +91,7 @@ void WriteGravityCsv(const GravityByImageName& gravity, const std::string& path)
     for (int i = 0; i < 3; ++i) contents += "," + internal::FormatDouble(vector[i]);
     contents += "\n";
   }
-  internal::WriteFilesAtomically({{path, contents}});
+  internal::WriteFileAtomically(path, contents);
 }
 
 std::vector<Eigen::Vector3d> GravityOfImages(const GravityByImageName& gravity,

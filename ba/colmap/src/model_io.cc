@@ -1,16 +1,13 @@
 #include "trigrav/colmap/model_io.h"
 
-#include <sys/stat.h>
-
 #include <Eigen/Geometry>
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <stdexcept>
+#include <vector>
 
 #include "file_io.h"
 #include "model_formats.h"
+#include "model_set.h"
 
 namespace trigrav {
 namespace colmap {
@@ -39,10 +36,23 @@ Eigen::Matrix3d RotationOfQuaternion(const double q_wxyz[4], const std::string& 
 
 namespace {
 
-internal::ModelFiles ModelPaths(const std::string& folder, ModelFormat format) {
+// The file names of a model in `format`.
+internal::ModelFiles ModelFileNames(ModelFormat format) {
   const std::string extension = format == ModelFormat::kBinary ? ".bin" : ".txt";
-  return {folder + "/cameras" + extension, folder + "/images" + extension,
-          folder + "/points3D" + extension};
+  return {"cameras" + extension, "images" + extension, "points3D" + extension};
+}
+
+internal::ModelFiles ModelPaths(const std::string& folder, ModelFormat format) {
+  const internal::ModelFiles names = ModelFileNames(format);
+  return {folder + "/" + names.cameras, folder + "/" + names.images, folder + "/" + names.points3D};
+}
+
+// (name, contents) of the three files.
+std::vector<internal::NamedFile> NamedFiles(const internal::ModelFiles& names,
+                                            const internal::ModelFiles& contents) {
+  return {{names.cameras, contents.cameras},
+          {names.images, contents.images},
+          {names.points3D, contents.points3D}};
 }
 
 }  // namespace
@@ -63,6 +73,8 @@ Reconstruction ReadModel(const std::string& folder, ModelFormat format) {
   Reconstruction reconstruction = format == ModelFormat::kBinary
                                       ? internal::ParseBinaryModel(contents, paths)
                                       : internal::ParseTextModel(contents, paths);
+  // After the parse, whose errors name the record: files that parse may still not belong together.
+  internal::CheckModelSet(folder, NamedFiles(ModelFileNames(format), contents));
   try {
     reconstruction.Check();
   } catch (const std::invalid_argument& error) {
@@ -75,28 +87,10 @@ void WriteModel(const Reconstruction& reconstruction,
                 const std::string& folder,
                 ModelFormat format) {
   reconstruction.Check();
-  struct stat info;
-  if (::stat(folder.c_str(), &info) != 0 || !S_ISDIR(info.st_mode)) {
-    throw std::runtime_error(folder + ": no such folder");
-  }
   const internal::ModelFiles contents = format == ModelFormat::kBinary
                                             ? internal::FormatBinaryModel(reconstruction)
                                             : internal::FormatTextModel(reconstruction);
-  const internal::ModelFiles paths = ModelPaths(folder, format);
-  internal::WriteFilesAtomically({{paths.cameras, contents.cameras},
-                                  {paths.images, contents.images},
-                                  {paths.points3D, contents.points3D}});
-  // The other format's files would be a stale model (ReadModel(folder) prefers .bin).
-  const internal::ModelFiles stale = ModelPaths(
-      folder, format == ModelFormat::kBinary ? ModelFormat::kText : ModelFormat::kBinary);
-  for (const std::string* path : {&stale.cameras, &stale.images, &stale.points3D}) {
-    if (internal::FileExists(*path) && std::remove(path->c_str()) != 0) {
-      throw std::runtime_error(*path +
-                               ": the model is written, but this stale file cannot be "
-                               "removed (" +
-                               std::strerror(errno) + ")");
-    }
-  }
+  internal::WriteModelSet(folder, NamedFiles(ModelFileNames(format), contents));
 }
 
 }  // namespace colmap

@@ -17,15 +17,22 @@ enum class ModelFormat { kText, kBinary };
 // Reads the model in `folder`: binary when cameras.bin, images.bin and points3D.bin exist, else
 // text. Throws std::runtime_error naming the file and line (or record) for a missing file, a
 // malformed or truncated record, or a COLMAP camera model trigrav does not have (its COLMAP name
-// is given); the result passes Reconstruction::Check().
+// is given), and for files that WriteModel's marker shows to come from different writes; the
+// result passes Reconstruction::Check().
 Reconstruction ReadModel(const std::string& folder);
 Reconstruction ReadModel(const std::string& folder, ModelFormat format);
 
-// Writes `reconstruction` (which must pass Check(); std::invalid_argument otherwise) into
-// `folder`, which must exist. The three files are written under temporary names and renamed
-// into place only when all three are complete, so a failure leaves no half-written model. Then
-// the other format's three files, if in `folder`, are removed, so that ReadModel(folder) reads
-// this model. Throws std::runtime_error on an I/O error.
+// Writes `reconstruction` (which must pass Check(); std::invalid_argument otherwise) as the model
+// in `folder`, as one set: old model or new, never a mix, also after a crash. The three files
+// and a marker file listing them (trigrav_model_set.txt: sizes, hashes, times) are written and
+// flushed to the disk in a new sibling folder "<folder>.tmp-XXXXXX", which then takes the place
+// of `folder` in one rename (an existing folder is swapped with it atomically, then removed).
+// `folder` need not exist (its parent must); if it exists, it may hold model files only (either
+// format, the marker, "*.tmp" of these names), since it is replaced as a whole: the other
+// format's files go with it. Throws std::runtime_error naming the folder on an I/O error, a
+// folder holding anything else, or a file system that cannot swap folders (renameat2
+// RENAME_EXCHANGE); nothing has changed then and no temporary folder is left. A crash may leave
+// a "<folder>.tmp-XXXXXX" sibling, which no read looks at.
 void WriteModel(const Reconstruction& reconstruction,
                 const std::string& folder,
                 ModelFormat format);

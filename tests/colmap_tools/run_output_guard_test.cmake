@@ -1,0 +1,78 @@
+# Runs a tool whose output is one of its inputs (see output_guard_tests.cmake) and fails unless it
+# exits with status 2, prints "error: <REGEX>" on stderr and leaves WORK_DIR as it was: every file
+# byte for byte, no file or folder added or removed.
+#   cmake -DEXE=<tool> -DWORK_DIR=<folder> -DREGEX=<regex> -DNUM_SETUP=<n> -DSETUP<i>=<op>
+#         -DNUM_ARGS=<m> -DARG<i>=<arg> -P run_output_guard_test.cmake
+# Set-up operations, relative to WORK_DIR (the tool's working folder): dir:<path>, file:<path>
+# (contents "input <path>"), symlink:<link>=<target>, hardlink:<link>=<target>,
+# flags:<path>=<flag>|<flag>... (a gflags --flagfile, one flag per line).
+cmake_minimum_required(VERSION 3.21)
+
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+if(NUM_SETUP GREATER 0)
+  math(EXPR last "${NUM_SETUP} - 1")
+  foreach(i RANGE ${last})
+    string(REGEX MATCH "^([a-z]+):([^=]*)=?(.*)$" ignored "${SETUP${i}}")
+    set(op "${CMAKE_MATCH_1}")
+    set(path "${WORK_DIR}/${CMAKE_MATCH_2}")
+    set(value "${CMAKE_MATCH_3}")
+    if(op STREQUAL "dir")
+      file(MAKE_DIRECTORY "${path}")
+    elseif(op STREQUAL "file")
+      file(WRITE "${path}" "input ${CMAKE_MATCH_2}\n")
+    elseif(op STREQUAL "symlink")
+      file(CREATE_LINK "${value}" "${path}" SYMBOLIC)
+    elseif(op STREQUAL "hardlink")
+      file(CREATE_LINK "${WORK_DIR}/${value}" "${path}")
+    elseif(op STREQUAL "flags")
+      string(REPLACE "|" "\n" lines "${value}")
+      file(WRITE "${path}" "${lines}\n")
+    else()
+      message(FATAL_ERROR "unknown set-up operation '${SETUP${i}}'")
+    endif()
+  endforeach()
+endif()
+
+# Every entry under WORK_DIR: folders, symbolic links with their targets, files with their SHA-256.
+function(snapshot out)
+  file(GLOB_RECURSE entries LIST_DIRECTORIES true RELATIVE "${WORK_DIR}" "${WORK_DIR}/*")
+  list(SORT entries)
+  set(result "")
+  foreach(entry IN LISTS entries)
+    set(path "${WORK_DIR}/${entry}")
+    if(IS_SYMLINK "${path}")
+      file(READ_SYMLINK "${path}" target)
+      string(APPEND result "${entry} -> ${target}\n")
+    elseif(IS_DIRECTORY "${path}")
+      string(APPEND result "${entry}/\n")
+    else()
+      file(SHA256 "${path}" hash)
+      string(APPEND result "${entry} ${hash}\n")
+    endif()
+  endforeach()
+  set(${out} "${result}" PARENT_SCOPE)
+endfunction()
+
+set(args "")
+if(NUM_ARGS GREATER 0)
+  math(EXPR last "${NUM_ARGS} - 1")
+  foreach(i RANGE ${last})
+    list(APPEND args "${ARG${i}}")
+  endforeach()
+endif()
+snapshot(before)
+execute_process(COMMAND ${EXE} ${args} WORKING_DIRECTORY "${WORK_DIR}"
+  RESULT_VARIABLE status OUTPUT_VARIABLE output ERROR_VARIABLE error TIMEOUT 60)
+snapshot(after)
+if(NOT status STREQUAL "2")
+  message(FATAL_ERROR "${EXE} ${args}: exit status '${status}', want 2\nstderr:\n${error}")
+endif()
+if(NOT error MATCHES "error: ${REGEX}")
+  message(FATAL_ERROR "${EXE} ${args}: stderr does not match 'error: ${REGEX}':\n${error}")
+endif()
+if(NOT before STREQUAL after)
+  message(FATAL_ERROR "${EXE} ${args}: the working folder changed\nbefore:\n${before}\n"
+    "after:\n${after}")
+endif()
+message(STATUS "refused, nothing changed:\n${before}${error}")

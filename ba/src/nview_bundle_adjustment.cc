@@ -33,7 +33,7 @@ std::string Indexed(const char* field, std::size_t i) {
   return std::string(field) + "[" + std::to_string(i) + "]";
 }
 
-// The reference image's rotation in the gravity-prior model (derivations.md section 14.2): the
+// The reference image's rotation in the gravity-prior model (ba/derivations.md section 14.2): the
 // chart R = R_0 Exp(a e_x + b e_z) around its starting rotation R_0 (cam_from_W), i.e. rotations
 // about the aligned world's x and z axes only, so that its rotation about gravity (the world's yaw,
 // a gauge freedom) stays that of R_0 on this chart (no rotation about W's y is applied to R_0).
@@ -225,7 +225,7 @@ void NViewBundleAdjuster::Build() {
   const int num_points = static_cast<int>(input_.points_in_world.size());
 
   // The world's gravity: the mean of the images' gravity directions mapped to the world,
-  // g_w ~ sum_k R_k^T g_k / |g_k| (derivations.md section 14.1).
+  // g_w ~ sum_k R_k^T g_k / |g_k| (ba/derivations.md section 14.1).
   Eigen::Vector3d gravity_sum = Eigen::Vector3d::Zero();
   for (const NViewImage& image : input_.images) {
     gravity_sum += image.cam_from_world.R.transpose() * image.gravity_in_cam.normalized();
@@ -283,7 +283,7 @@ void NViewBundleAdjuster::Build() {
     }
   }
 
-  // Gauge (derivations.md section 14.2).
+  // Gauge (ba/derivations.md section 14.2).
   const int reference = config_.reference_image;
   scale_image_ = config_.scale_image;
   if (scale_image_ < 0) {

@@ -1,4 +1,4 @@
-// NViewBundleAdjuster's per-image covariances (derivations.md section 14.3): the Gauss-Newton
+// NViewBundleAdjuster's per-image covariances (ba/derivations.md section 14.3): the Gauss-Newton
 // covariance of the camera parameters, (J^T J)^-1 restricted to the cameras, as the inverse of the
 // reduced camera matrix S = U - sum_p W_p V_p^+ W_p^T (the points eliminated block by block), then
 // mapped from each block's tangent space to [yaw or omega, C_world].

@@ -2,7 +2,7 @@
 #define TRIGRAV_BA_SRC_ROBUST_LOSS_H_
 
 // The robust loss of ThreeViewBundleAdjustmentOptions::loss, one definition for both engines: the
-// Ceres problem's residual blocks and the dedicated engine (derivations.md section 13.2).
+// Ceres problem's residual blocks and the dedicated engine (ba/derivations.md section 13.2).
 
 #include <ceres/loss_function.h>
 

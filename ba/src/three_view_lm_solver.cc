@@ -1,4 +1,4 @@
-// The dedicated Levenberg-Marquardt engine (three_view_lm_solver.h; derivations.md section 13).
+// The dedicated Levenberg-Marquardt engine (three_view_lm_solver.h; ba/derivations.md section 13).
 #include "three_view_lm_solver.h"
 
 #include <ceres/manifold.h>

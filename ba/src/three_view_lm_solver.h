@@ -5,7 +5,7 @@
 // kDedicated): Levenberg-Marquardt on the adjuster's problem with each point's 3 x 3 block
 // eliminated and a fixed-size reduced system of the pose, following Ceres' trust-region rules
 // but on a warm start (point steps first, the last candidate kept at the function tolerance)
-// (derivations.md section 13). Internal to trigrav::ba.
+// (ba/derivations.md section 13). Internal to trigrav::ba.
 
 #include <ceres/solver.h>
 

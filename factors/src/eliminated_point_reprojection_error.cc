@@ -1,4 +1,4 @@
-// EliminatedPointReprojectionError (derivations.md section 15).
+// EliminatedPointReprojectionError (ba/derivations.md section 15).
 #include "trigrav/factors/eliminated_point_reprojection_error.h"
 
 #include <Eigen/Geometry>

@@ -580,7 +580,7 @@ TEST(DedicatedEngineTest, SecondRefinementStartsFromThePreviousPoints) {
   }
 }
 
-// The warm start of a second refinement (derivations.md section 13.6) where it matters: forward
+// The warm start of a second refinement (ba/derivations.md section 13.6) where it matters: forward
 // motion, on which the joint iteration removes the excess of new points' midpoints only slowly,
 // 600 triplets refined, then 5 more. The warm run (the first run's points, the new ones minimised
 // over with the cameras fixed) reaches the optimum of a cold run (every point triangulated again)

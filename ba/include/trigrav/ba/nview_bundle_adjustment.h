@@ -8,7 +8,7 @@
 // COLMAP's camera models; the intrinsics are held constant. No COLMAP type appears here
 // (trigrav::colmap converts).
 //
-// Frames (derivations.md section 14.1): the caller's world frame is arbitrary (e.g. COLMAP's). The
+// Frames (ba/derivations.md 14.1): the caller's world frame is arbitrary (e.g. COLMAP's). The
 // adjuster estimates the world's gravity direction from the images,
 // g_w = normalised sum_k R_k^T g_k / |g_k| (R_k the rotation of cam_from_world), and refines in a
 // gravity-aligned frame W = world_aligned_from_world() * world: +y along g_w, and the horizontal
@@ -24,7 +24,7 @@
 //  - kGravityPrior: R_k free (quaternion cam_from_W [w x y z], ceres::QuaternionManifold) with a
 //    GravityPriorError(e_y, g_k) per image, weighted by (pixel_sigma_px / gravity_sigma_rad)^2.
 //
-// Gauge (derivations.md section 14.2): both models leave 5 dof (a rotation about gravity, a
+// Gauge (ba/derivations.md section 14.2): both models leave 5 dof (a rotation about gravity, a
 // translation, a scale), since gravity fixes the tilt (exactly for kYawOnly, through the priors for
 // kGravityPrior).
 //  - The reference image's centre is constant; its yaw is constant (kYawOnly), or its rotation
@@ -124,7 +124,7 @@ struct NViewBundleAdjustmentOptions {
   // Pixel noise assumed by the gravity prior's weight and by the covariance's scale.
   double pixel_sigma_px = 1.0;
   double gravity_sigma_deg = 0.1;  // IMU angular sigma (kGravityPrior)
-  // Fill NViewBundleAdjustmentSummary::covariances (derivations.md section 14.3: the points
+  // Fill NViewBundleAdjustmentSummary::covariances (ba/derivations.md section 14.3: the points
   // eliminated by blocks, the dense reduced camera matrix inverted by Cholesky, O((4 or 6 N)^3)).
   bool compute_covariance = false;
 

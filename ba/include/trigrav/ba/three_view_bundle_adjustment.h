@@ -52,7 +52,7 @@ struct ThreeViewBundleAdjustmentOptions {
   // kCeresPointsEliminated may stop in another, never a worse one on those tests) with Ceres'
   // trust-region rules and the tolerances and iteration cap of CeresSolverOptions().
   //  - kCeresPointsEliminated (default): ceres::Solve on a problem of the pose blocks alone, one
-  //    EliminatedPointReprojectionError per point (variable projection, derivations.md section
+  //    EliminatedPointReprojectionError per point (variable projection, ba/derivations.md section
   //    15): usually fewer iterations than kCeres, a 7 x 7 (11 x 11) dense system
   //    (DENSE_NORMAL_CHOLESKY, whatever linear_solver_type says). It solves problem() as kCeres
   //    instead when problem() was asked for after Build() (so that factors, constant blocks or
@@ -60,7 +60,7 @@ struct ThreeViewBundleAdjustmentOptions {
   //    eliminate).
   //  - kCeres: ceres::Solve on problem(), one factor per observation and a block per point
   //    (DENSE_SCHUR by default); factors a caller added to problem() take part.
-  //  - kDedicated: trigrav's own Levenberg-Marquardt on problem()'s cost (derivations.md section
+  //  - kDedicated: trigrav's own Levenberg-Marquardt on problem()'s cost (ba/derivations.md section
   //    13): each point's 3 x 3 block eliminated, a fixed-size 7 x 7 (11 x 11) reduced system, no
   //    ceres::Problem built, no allocation per iteration; the fastest
   //    (examples/benchmarks/README.md). Its per-point storage (1.2-1.4 kB per point) is kept for
@@ -85,7 +85,7 @@ struct ThreeViewBundleAdjustmentOptions {
   double bearing_sigma_deg = 0.05;
   double gravity_sigma_deg = 0.5;  // IMU angular sigma (gravity-prior model)
   // Also compute the covariance of the refined pose (ThreeViewRefinement::covariance;
-  // three_view_covariance.h, derivations.md section 12), scaled by ObservationSigma()^2 (and
+  // three_view_covariance.h, ba/derivations.md section 12), scaled by ObservationSigma()^2 (and
   // gravity_sigma_deg^2 through the prior's weight). Cost per refinement (one thread, median;
   // examples/experiments/covariance_calibration): 0.9 ms at 300 points, 1.9 ms at 650 (yaw-only;
   // 1.1 and 2.4 ms gravity-prior), 8-9 % of a kCeres refinement; ceres::Covariance (SPARSE_QR) on

@@ -1,7 +1,7 @@
 #ifndef TRIGRAV_BA_THREE_VIEW_COVARIANCE_H_
 #define TRIGRAV_BA_THREE_VIEW_COVARIANCE_H_
 
-// Covariance of the pose refined by a three-view bundle adjustment (derivations.md section 12),
+// Covariance of the pose refined by a three-view bundle adjustment (ba/derivations.md section 12),
 // for the information matrix of a relative-pose factor in a SLAM / VIO back end.
 //
 // Parameterisation (ThreeViewCovarianceLayout), camera 1 being the reference and |C2| = 1:
@@ -64,7 +64,7 @@ Eigen::VectorXd ThreeViewPoseDifference(ThreeViewBundleAdjustmentOptions::Rotati
 // Jacobian cannot be evaluated or the information matrix is rank-deficient (its smallest
 // eigenvalue below 1e-12 of its largest). Prints nothing; allocates O(points) once. With
 // Engine::kDedicated the blocks of J^T J come from that engine's own linearisation (the same
-// Jacobian through the same losses, derivations.md section 13), and no ceres::Problem is built.
+// Jacobian through the same losses, ba/derivations.md section 13), and no ceres::Problem is built.
 bool ComputeThreeViewPoseCovariance(ThreeViewBundleAdjuster* adjuster,
                                     double observation_sigma,
                                     Eigen::MatrixXd* covariance,

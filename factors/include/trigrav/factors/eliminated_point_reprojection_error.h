@@ -2,7 +2,7 @@
 #define TRIGRAV_FACTORS_ELIMINATED_POINT_REPROJECTION_ERROR_H_
 
 // The reprojection error of one triplet with its point eliminated by variable projection
-// (derivations.md section 15): a residual block over the two cameras alone, for a Ceres problem
+// (ba/derivations.md section 15): a residual block over the two cameras alone, for a Ceres problem
 // with a handful of parameter blocks instead of one per point.
 //
 // For the cameras in its parameter blocks, Evaluate first minimises the triplet's robust cost

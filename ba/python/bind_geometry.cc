@@ -61,7 +61,7 @@ void BindPoses(py::module_& m) {
           [](const CameraPose& c_from_b, const CameraPose& b_from_a) {
             return c_from_b * b_from_a;
           },
-          py::is_operator(), "c_from_a = c_from_b * b_from_a")
+          py::is_operator(), py::arg("b_from_a"), "c_from_a = c_from_b * b_from_a")
       .def("__repr__", [](const CameraPose& pose) {
         return "CameraPose(R=" + std::string(py::repr(py::cast(pose.R))) +
                ", t=" + std::string(py::repr(py::cast(pose.t))) + ")";
@@ -74,7 +74,8 @@ void BindPoses(py::module_& m) {
       .def(py::init([](const CameraPose& cam2_from_cam1, const CameraPose& cam3_from_cam1) {
              return ThreeViewPose{cam2_from_cam1, cam3_from_cam1};
            }),
-           py::arg("cam2_from_cam1") = CameraPose(), py::arg("cam3_from_cam1") = CameraPose())
+           py::arg_v("cam2_from_cam1", CameraPose(), "CameraPose()"),
+           py::arg_v("cam3_from_cam1", CameraPose(), "CameraPose()"))
       .def_readwrite("cam2_from_cam1", &ThreeViewPose::cam2_from_cam1)
       .def_readwrite("cam3_from_cam1", &ThreeViewPose::cam3_from_cam1)
       .def("cam3_from_cam2", &ThreeViewPose::Cam3FromCam2,

@@ -1,5 +1,11 @@
 """Type stub of the trigrav module (ba/python/README.md). Arrays are float64 numpy arrays; inputs
-accept any array-like of real numbers of the shape given in the comments."""
+accept any array-like of real numbers of the shape given in the comments.
+
+Checked against the built module by tests/python/test_stub.py: every name, member, parameter (name,
+order, keyword-only) and default. Defaults are the module's own, written as expressions of the
+module (RansacOptions(), InitialSolver.TRIFOCAL_3PT); every enum value and constant ends with
+`# value = <repr() of the module's value>`, e.g. `NONE: ClassVar[FailureCause]  # value =
+<FailureCause.NONE: 0>`, so that names and integer values are both compared."""
 
 from typing import ClassVar, List, Optional, Sequence, Tuple, Union
 
@@ -10,7 +16,7 @@ ArrayLike = npt.ArrayLike
 Array = npt.NDArray[np.float64]
 Mask = npt.NDArray[np.bool_]
 
-CAMERA_MODELS: Tuple[str, ...]
+CAMERA_MODELS: Tuple[str, ...]  # value = ('SIMPLE_PINHOLE', 'PINHOLE', 'SIMPLE_RADIAL', 'RADIAL', 'OPENCV', 'OPENCV_FISHEYE')
 
 class CameraPose:
     """x_cam = R @ x_ref + t; center = -R.T @ t."""
@@ -27,7 +33,9 @@ class CameraPose:
 class ThreeViewPose:
     cam2_from_cam1: CameraPose
     cam3_from_cam1: CameraPose
-    def __init__(self, cam2_from_cam1: CameraPose = ..., cam3_from_cam1: CameraPose = ...) -> None: ...
+    def __init__(
+        self, cam2_from_cam1: CameraPose = CameraPose(), cam3_from_cam1: CameraPose = CameraPose()
+    ) -> None: ...
     def cam3_from_cam2(self) -> CameraPose: ...
     def is_finite(self) -> bool: ...
 
@@ -78,12 +86,12 @@ def unalign_pose(
 ) -> CameraPose: ...
 
 class InitialSolver:
-    TRIFOCAL_3PT: ClassVar[InitialSolver]
-    TRIFOCAL_3PT_SEXTIC: ClassVar[InitialSolver]
-    TRIFOCAL_4PT: ClassVar[InitialSolver]
-    TRIFOCAL_LINEAR: ClassVar[InitialSolver]
-    ESSENTIAL_5PT: ClassVar[InitialSolver]
-    ESSENTIAL_8PT: ClassVar[InitialSolver]
+    TRIFOCAL_3PT: ClassVar[InitialSolver]  # value = <InitialSolver.TRIFOCAL_3PT: 0>
+    TRIFOCAL_3PT_SEXTIC: ClassVar[InitialSolver]  # value = <InitialSolver.TRIFOCAL_3PT_SEXTIC: 1>
+    TRIFOCAL_4PT: ClassVar[InitialSolver]  # value = <InitialSolver.TRIFOCAL_4PT: 2>
+    TRIFOCAL_LINEAR: ClassVar[InitialSolver]  # value = <InitialSolver.TRIFOCAL_LINEAR: 3>
+    ESSENTIAL_5PT: ClassVar[InitialSolver]  # value = <InitialSolver.ESSENTIAL_5PT: 4>
+    ESSENTIAL_8PT: ClassVar[InitialSolver]  # value = <InitialSolver.ESSENTIAL_8PT: 5>
     def __init__(self, value: int) -> None: ...
     @property
     def name(self) -> str: ...
@@ -99,10 +107,10 @@ class InitialSolver:
     def from_short_name(name: str) -> InitialSolver: ...
 
 class Trifocal4ptRecovery:
-    ENFORCED: ClassVar[Trifocal4ptRecovery]
-    LEAST_SQUARES: ClassVar[Trifocal4ptRecovery]
-    PAPER_CLOSED_FORM: ClassVar[Trifocal4ptRecovery]
-    LEAST_SQUARES_IF_MINIMAL: ClassVar[Trifocal4ptRecovery]
+    ENFORCED: ClassVar[Trifocal4ptRecovery]  # value = <Trifocal4ptRecovery.ENFORCED: 0>
+    LEAST_SQUARES: ClassVar[Trifocal4ptRecovery]  # value = <Trifocal4ptRecovery.LEAST_SQUARES: 1>
+    PAPER_CLOSED_FORM: ClassVar[Trifocal4ptRecovery]  # value = <Trifocal4ptRecovery.PAPER_CLOSED_FORM: 2>
+    LEAST_SQUARES_IF_MINIMAL: ClassVar[Trifocal4ptRecovery]  # value = <Trifocal4ptRecovery.LEAST_SQUARES_IF_MINIMAL: 3>
     def __init__(self, value: int) -> None: ...
     @property
     def name(self) -> str: ...
@@ -110,8 +118,8 @@ class Trifocal4ptRecovery:
     def value(self) -> int: ...
 
 class Trifocal4ptEpipoles:
-    LEAST_SQUARES_READ_IF_MINIMAL: ClassVar[Trifocal4ptEpipoles]
-    TENSOR_NULL_VECTORS: ClassVar[Trifocal4ptEpipoles]
+    LEAST_SQUARES_READ_IF_MINIMAL: ClassVar[Trifocal4ptEpipoles]  # value = <Trifocal4ptEpipoles.LEAST_SQUARES_READ_IF_MINIMAL: 0>
+    TENSOR_NULL_VECTORS: ClassVar[Trifocal4ptEpipoles]  # value = <Trifocal4ptEpipoles.TENSOR_NULL_VECTORS: 1>
     def __init__(self, value: int) -> None: ...
     @property
     def name(self) -> str: ...
@@ -127,11 +135,11 @@ class Trifocal4ptOptions:
     def __init__(
         self,
         *,
-        recovery: Trifocal4ptRecovery = ...,
-        epipoles: Trifocal4ptEpipoles = ...,
-        resolve_translations: bool = ...,
-        epipole_iterations: int = ...,
-        polish_iterations: int = ...,
+        recovery: Trifocal4ptRecovery = Trifocal4ptRecovery.LEAST_SQUARES_IF_MINIMAL,
+        epipoles: Trifocal4ptEpipoles = Trifocal4ptEpipoles.LEAST_SQUARES_READ_IF_MINIMAL,
+        resolve_translations: bool = True,
+        epipole_iterations: int = 0,
+        polish_iterations: int = 8,
     ) -> None: ...
 
 # x1, x2, x3: N x 3 rays (one row per triplet); gravity_in_cam: 3 x 3 (row k: camera k + 1), or
@@ -147,7 +155,7 @@ def solve_trifocal_4pt(
     x2: ArrayLike,
     x3: ArrayLike,
     gravity_in_cam: Optional[ArrayLike] = None,
-    options: Trifocal4ptOptions = ...,
+    options: Trifocal4ptOptions = Trifocal4ptOptions(),
 ) -> List[ThreeViewPose]: ...
 def solve_trifocal_linear(x1: ArrayLike, x2: ArrayLike, x3: ArrayLike) -> List[ThreeViewPose]: ...
 def solve_essential_5pt(x1: ArrayLike, x2: ArrayLike) -> List[CameraPose]: ...
@@ -185,8 +193,8 @@ class RansacOptions:
     ) -> None: ...
 
 class RobustThreeViewOptions:
-    TILT_CORRECTION_FROM_GRAVITY_SIGMA: ClassVar[float]
-    GRAVITY_CONSISTENCY_FROM_GRAVITY_SIGMA: ClassVar[float]
+    TILT_CORRECTION_FROM_GRAVITY_SIGMA: ClassVar[float]  # value = -1.0
+    GRAVITY_CONSISTENCY_FROM_GRAVITY_SIGMA: ClassVar[float]  # value = -1.0
     solver: InitialSolver
     ransac: RansacOptions
     max_bearing_error_deg: float
@@ -197,8 +205,8 @@ class RobustThreeViewOptions:
     def __init__(
         self,
         *,
-        solver: InitialSolver = ...,
-        ransac: RansacOptions = ...,
+        solver: InitialSolver = InitialSolver.TRIFOCAL_3PT,
+        ransac: RansacOptions = RansacOptions(),
         max_bearing_error_deg: float = 0.1,
         max_tilt_correction_deg: float = -1.0,
         max_gravity_inconsistency_deg: float = -1.0,
@@ -231,20 +239,20 @@ class GravityConsistency:
     def inconsistent_camera(self) -> int: ...
 
 class FailureCause:
-    NONE: ClassVar[FailureCause]
-    TOO_FEW_TRIPLETS: ClassVar[FailureCause]
-    BELOW_INLIER_FLOOR: ClassVar[FailureCause]
-    TOO_FEW_INLIERS: ClassVar[FailureCause]
-    CHANCE_CONSENSUS: ClassVar[FailureCause]
-    UNCERTAIN_POSE: ClassVar[FailureCause]
-    NO_PARALLAX: ClassVar[FailureCause]
-    PIXELS_VS_INTRINSICS: ClassVar[FailureCause]
-    VIEWS_OUT_OF_ORDER: ClassVar[FailureCause]
-    CAMERA_GRAVITY: ClassVar[FailureCause]
-    NOISY_GRAVITY: ClassVar[FailureCause]
-    OTHER_MOTION: ClassVar[FailureCause]
-    REFINEMENT_SHIFT: ClassVar[FailureCause]
-    STOPPED: ClassVar[FailureCause]
+    NONE: ClassVar[FailureCause]  # value = <FailureCause.NONE: 0>
+    TOO_FEW_TRIPLETS: ClassVar[FailureCause]  # value = <FailureCause.TOO_FEW_TRIPLETS: 1>
+    BELOW_INLIER_FLOOR: ClassVar[FailureCause]  # value = <FailureCause.BELOW_INLIER_FLOOR: 2>
+    TOO_FEW_INLIERS: ClassVar[FailureCause]  # value = <FailureCause.TOO_FEW_INLIERS: 3>
+    CHANCE_CONSENSUS: ClassVar[FailureCause]  # value = <FailureCause.CHANCE_CONSENSUS: 4>
+    UNCERTAIN_POSE: ClassVar[FailureCause]  # value = <FailureCause.UNCERTAIN_POSE: 5>
+    NO_PARALLAX: ClassVar[FailureCause]  # value = <FailureCause.NO_PARALLAX: 6>
+    PIXELS_VS_INTRINSICS: ClassVar[FailureCause]  # value = <FailureCause.PIXELS_VS_INTRINSICS: 7>
+    VIEWS_OUT_OF_ORDER: ClassVar[FailureCause]  # value = <FailureCause.VIEWS_OUT_OF_ORDER: 8>
+    CAMERA_GRAVITY: ClassVar[FailureCause]  # value = <FailureCause.CAMERA_GRAVITY: 9>
+    NOISY_GRAVITY: ClassVar[FailureCause]  # value = <FailureCause.NOISY_GRAVITY: 10>
+    OTHER_MOTION: ClassVar[FailureCause]  # value = <FailureCause.OTHER_MOTION: 11>
+    REFINEMENT_SHIFT: ClassVar[FailureCause]  # value = <FailureCause.REFINEMENT_SHIFT: 12>
+    STOPPED: ClassVar[FailureCause]  # value = <FailureCause.STOPPED: 13>
     def __init__(self, value: int) -> None: ...
     @property
     def name(self) -> str: ...
@@ -278,43 +286,44 @@ class RobustThreeViewEstimate:
     def evidence(self) -> ConsensusEvidence: ...
 
 def estimate_three_view_pose_robust(
-    observations: ThreeViewObservations, options: RobustThreeViewOptions = ...
+    observations: ThreeViewObservations, options: RobustThreeViewOptions = RobustThreeViewOptions()
 ) -> RobustThreeViewEstimate: ...
 
 class ThreeViewBundleAdjustmentOptions:
     class Engine:
-        CERES: ClassVar[ThreeViewBundleAdjustmentOptions.Engine]
-        DEDICATED: ClassVar[ThreeViewBundleAdjustmentOptions.Engine]
+        CERES: ClassVar[ThreeViewBundleAdjustmentOptions.Engine]  # value = <Engine.CERES: 0>
+        DEDICATED: ClassVar[ThreeViewBundleAdjustmentOptions.Engine]  # value = <Engine.DEDICATED: 1>
+        CERES_POINTS_ELIMINATED: ClassVar[ThreeViewBundleAdjustmentOptions.Engine]  # value = <Engine.CERES_POINTS_ELIMINATED: 2>
         def __init__(self, value: int) -> None: ...
         @property
         def name(self) -> str: ...
         @property
         def value(self) -> int: ...
     class RotationModel:
-        YAW_ONLY: ClassVar[ThreeViewBundleAdjustmentOptions.RotationModel]
-        GRAVITY_PRIOR: ClassVar[ThreeViewBundleAdjustmentOptions.RotationModel]
+        YAW_ONLY: ClassVar[ThreeViewBundleAdjustmentOptions.RotationModel]  # value = <RotationModel.YAW_ONLY: 0>
+        GRAVITY_PRIOR: ClassVar[ThreeViewBundleAdjustmentOptions.RotationModel]  # value = <RotationModel.GRAVITY_PRIOR: 1>
         def __init__(self, value: int) -> None: ...
         @property
         def name(self) -> str: ...
         @property
         def value(self) -> int: ...
     class LossType:
-        NONE: ClassVar[ThreeViewBundleAdjustmentOptions.LossType]
-        HUBER: ClassVar[ThreeViewBundleAdjustmentOptions.LossType]
-        CAUCHY: ClassVar[ThreeViewBundleAdjustmentOptions.LossType]
+        NONE: ClassVar[ThreeViewBundleAdjustmentOptions.LossType]  # value = <LossType.NONE: 0>
+        HUBER: ClassVar[ThreeViewBundleAdjustmentOptions.LossType]  # value = <LossType.HUBER: 1>
+        CAUCHY: ClassVar[ThreeViewBundleAdjustmentOptions.LossType]  # value = <LossType.CAUCHY: 2>
         def __init__(self, value: int) -> None: ...
         @property
         def name(self) -> str: ...
         @property
         def value(self) -> int: ...
     class LinearSolverType:
-        DENSE_NORMAL_CHOLESKY: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]
-        DENSE_QR: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]
-        SPARSE_NORMAL_CHOLESKY: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]
-        DENSE_SCHUR: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]
-        SPARSE_SCHUR: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]
-        ITERATIVE_SCHUR: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]
-        CGNR: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]
+        DENSE_NORMAL_CHOLESKY: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]  # value = <LinearSolverType.DENSE_NORMAL_CHOLESKY: 0>
+        DENSE_QR: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]  # value = <LinearSolverType.DENSE_QR: 1>
+        SPARSE_NORMAL_CHOLESKY: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]  # value = <LinearSolverType.SPARSE_NORMAL_CHOLESKY: 2>
+        DENSE_SCHUR: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]  # value = <LinearSolverType.DENSE_SCHUR: 3>
+        SPARSE_SCHUR: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]  # value = <LinearSolverType.SPARSE_SCHUR: 4>
+        ITERATIVE_SCHUR: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]  # value = <LinearSolverType.ITERATIVE_SCHUR: 5>
+        CGNR: ClassVar[ThreeViewBundleAdjustmentOptions.LinearSolverType]  # value = <LinearSolverType.CGNR: 6>
         def __init__(self, value: int) -> None: ...
         @property
         def name(self) -> str: ...
@@ -338,9 +347,9 @@ class ThreeViewBundleAdjustmentOptions:
     def __init__(
         self,
         *,
-        engine: ThreeViewBundleAdjustmentOptions.Engine = ...,
-        rotation_model: ThreeViewBundleAdjustmentOptions.RotationModel = ...,
-        loss: ThreeViewBundleAdjustmentOptions.LossType = ...,
+        engine: ThreeViewBundleAdjustmentOptions.Engine = ThreeViewBundleAdjustmentOptions.Engine.CERES_POINTS_ELIMINATED,
+        rotation_model: ThreeViewBundleAdjustmentOptions.RotationModel = ThreeViewBundleAdjustmentOptions.RotationModel.YAW_ONLY,
+        loss: ThreeViewBundleAdjustmentOptions.LossType = ThreeViewBundleAdjustmentOptions.LossType.HUBER,
         loss_scale_px: float = 2.0,
         pixel_sigma_px: float = 1.0,
         loss_scale_deg: float = 0.1,
@@ -349,7 +358,7 @@ class ThreeViewBundleAdjustmentOptions:
         compute_covariance: bool = False,
         max_num_iterations: int = 50,
         num_threads: int = 1,
-        linear_solver_type: ThreeViewBundleAdjustmentOptions.LinearSolverType = ...,
+        linear_solver_type: ThreeViewBundleAdjustmentOptions.LinearSolverType = ThreeViewBundleAdjustmentOptions.LinearSolverType.DENSE_SCHUR,
         function_tolerance: float = 1e-8,
         gradient_tolerance: float = 1e-10,
         parameter_tolerance: float = 1e-10,
@@ -403,7 +412,7 @@ def refine_three_view_pose(
     observations: ThreeViewObservations,
     initial: ThreeViewPose,
     inliers: ArrayLike,
-    options: ThreeViewBundleAdjustmentOptions = ...,
+    options: ThreeViewBundleAdjustmentOptions = ThreeViewBundleAdjustmentOptions(),
 ) -> ThreeViewRefinement: ...
 def three_view_pose_difference(
     rotation_model: ThreeViewBundleAdjustmentOptions.RotationModel,
@@ -420,10 +429,10 @@ class InitializeAndRefineOptions:
     def __init__(
         self,
         *,
-        robust: RobustThreeViewOptions = ...,
+        robust: RobustThreeViewOptions = RobustThreeViewOptions(),
         refine: bool = True,
         reclassification_rounds: int = 1,
-        bundle_adjustment: ThreeViewBundleAdjustmentOptions = ...,
+        bundle_adjustment: ThreeViewBundleAdjustmentOptions = ThreeViewBundleAdjustmentOptions(),
     ) -> None: ...
 
 class ThreeViewEstimateTimings:
@@ -473,11 +482,11 @@ class ThreeViewEstimate:
     def timings(self) -> ThreeViewEstimateTimings: ...
 
 def initialize_and_refine(
-    observations: ThreeViewObservations, options: InitializeAndRefineOptions = ...
+    observations: ThreeViewObservations, options: InitializeAndRefineOptions = InitializeAndRefineOptions()
 ) -> ThreeViewEstimate: ...
 def initialize_and_refine_batch(
     batch: Sequence[ThreeViewObservations],
-    options: InitializeAndRefineOptions = ...,
+    options: InitializeAndRefineOptions = InitializeAndRefineOptions(),
     num_threads: int = 0,
     return_exceptions: bool = False,
 ) -> List[Union[ThreeViewEstimate, ValueError]]: ...
@@ -548,7 +557,7 @@ class SyntheticScene:
     @property
     def is_inlier(self) -> Mask: ...
 
-def generate_synthetic_scene(options: SyntheticSceneOptions = ..., seed: int = 0) -> SyntheticScene: ...
+def generate_synthetic_scene(options: SyntheticSceneOptions = SyntheticSceneOptions(), seed: int = 0) -> SyntheticScene: ...
 def to_observations(scene: SyntheticScene) -> ThreeViewObservations: ...
 def to_bearing_observations(scene: SyntheticScene) -> ThreeViewObservations: ...
 

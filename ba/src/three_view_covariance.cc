@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "pseudo_inverse.h"
 #include "three_view_lm_solver.h"
 
 namespace trigrav {
@@ -30,19 +31,6 @@ constexpr double kMinRelativeEigenvalue = 1e-12;
 Eigen::Vector3d RotationDifference(const Eigen::Matrix3d& R_a, const Eigen::Matrix3d& R_b) {
   const Eigen::AngleAxisd angle_axis(Eigen::Matrix3d(R_a * R_b.transpose()));
   return angle_axis.angle() * angle_axis.axis();
-}
-
-// Pseudo-inverse of a point's 3 x 3 information block: a direction it does not constrain (a
-// distant point's depth) has no Jacobian in it, so it couples to no pose parameter either.
-Eigen::Matrix3d PseudoInverse(const Eigen::Matrix3d& information) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(information);
-  const Eigen::Vector3d& values = eigen.eigenvalues();
-  const double floor = kMinRelativeEigenvalue * values.cwiseAbs().maxCoeff();
-  Eigen::Vector3d inverse = Eigen::Vector3d::Zero();
-  for (int i = 0; i < 3; ++i) {
-    if (values[i] > floor) inverse[i] = 1.0 / values[i];
-  }
-  return eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
 }
 
 // d(layout coordinates) / d(Ceres tangent coordinates) of the pose blocks: 1 for a yaw, 2 I for a
@@ -205,7 +193,8 @@ bool ComputeThreeViewPoseCovariance(ThreeViewBundleAdjuster* adjuster,
   for (std::size_t p = 0; p < information.point.size(); ++p) {
     const Eigen::Matrix<double, Eigen::Dynamic, 3, 0, kMaxPoseSize, 3> c =
         information.coupling[p].topRows(n);
-    pose_information -= c * PseudoInverse(information.point[p]) * c.transpose();
+    pose_information -=
+        c * internal::PseudoInverse(information.point[p], kMinRelativeEigenvalue) * c.transpose();
   }
 
   const Eigen::SelfAdjointEigenSolver<PoseMatrix> eigen(pose_information);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "robust_triplet_data.h"
+#include "trifocal_common.h"
 #include "trigrav/initializers/gravity.h"
 #include "trigrav/initializers/trifocal_4pt.h"
 #include "trigrav/initializers/trifocal_linear.h"
@@ -28,7 +29,6 @@ namespace internal {
 template <typename M>
 struct TiltCorrectingRefinement : M {
   static_assert(M::kAligned, "only gravity-aware methods have a tilt to correct");
-  static constexpr std::size_t kMinTripletsForTensor = 7;  // SolveTrifocalLinear's minimum
   static void Refine(const TripletData& data,
                      const ViewRays& aligned,
                      Workspace* work,
@@ -36,7 +36,7 @@ struct TiltCorrectingRefinement : M {
     std::array<Eigen::Matrix3d, 3> alignment = data.alignment;
     std::array<const Rays*, 3> rays = {&aligned[0], &aligned[1], &aligned[2]};
     work->three_view.clear();
-    if (aligned[0].size() >= kMinTripletsForTensor) {
+    if (aligned[0].size() >= kTrifocalLinearMinTriplets) {
       SolveTrifocalLinear(aligned[0], aligned[1], aligned[2], &work->three_view);
     }
     if (!work->three_view.empty()) {

@@ -19,7 +19,7 @@ namespace {
 using Rays = std::vector<Eigen::Vector3d>;
 // The rays of one view of a minimal sample, copied to fixed storage.
 using MinimalRays = std::array<Eigen::Vector3d, 3>;
-using Vector6d = Eigen::Matrix<double, 6, 1>;
+using internal::Vector6d;
 
 constexpr std::size_t kNumTriplets = 3;
 

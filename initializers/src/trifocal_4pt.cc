@@ -20,10 +20,8 @@ namespace trigrav {
 namespace {
 
 using Vector17d = Eigen::Matrix<double, 17, 1>;
-using Vector6d = Eigen::Matrix<double, 6, 1>;
-using TensorSlices = std::array<Eigen::Matrix3d, 3>;
-
-constexpr int kMinTriplets = 4;
+using internal::TensorSlices;
+using internal::Vector6d;
 
 // Where Q_1..Q_17 sit in the aligned trifocal tensor (paper eqs c2-c4, checked in derivations.md
 // section 3): entry T_slice(row, col) = sign * Q_q, all indices 0-based. Six entries of T are
@@ -529,10 +527,12 @@ int SolveTrifocal4pt(const std::vector<Eigen::Vector3d>& x1,
                      const Trifocal4ptOptions& options,
                      std::vector<ThreeViewPose>* solutions) {
   options.Check();
-  internal::CheckTriplets("SolveTrifocal4pt", kMinTriplets, std::numeric_limits<std::size_t>::max(),
-                          x1, x2, x3, solutions);
+  internal::CheckTriplets("SolveTrifocal4pt", internal::kTrifocal4ptMinTriplets,
+                          std::numeric_limits<std::size_t>::max(), x1, x2, x3, solutions);
   solutions->clear();
-  if (x1.size() == kMinTriplets) return SolveAligned<16>(x1, x2, x3, options, solutions);
+  if (x1.size() == internal::kTrifocal4ptMinTriplets) {
+    return SolveAligned<16>(x1, x2, x3, options, solutions);
+  }
   return SolveAligned<Eigen::Dynamic>(x1, x2, x3, options, solutions);
 }
 

@@ -11,7 +11,7 @@
 namespace trigrav {
 namespace internal {
 
-bool EpipolesFromTensor(const std::array<Eigen::Matrix3d, 3>& T,
+bool EpipolesFromTensor(const TensorSlices& T,
                         Eigen::Vector3d* epipole2,
                         Eigen::Vector3d* epipole3) {
   Eigen::Matrix3d left_null_vectors, right_null_vectors;

@@ -16,6 +16,16 @@
 namespace trigrav {
 namespace internal {
 
+// The centres (c_2; c_3) of a three-view estimate, the unknowns of the translation rows below.
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+// A trifocal tensor as its slices T_1, T_2, T_3.
+using TensorSlices = std::array<Eigen::Matrix3d, 3>;
+
+// The fewest triplets each non-minimal trifocal solver accepts (SolveTrifocal4pt,
+// SolveTrifocalLinear); with exactly that many each runs its fixed-size path.
+inline constexpr int kTrifocal4ptMinTriplets = 4;
+inline constexpr int kTrifocalLinearMinTriplets = 7;
+
 // A yaw R_y(theta) held as its cosine and sine: the solvers build rotations from it without
 // trigonometric calls (they cost about as much as a 6x6 triangular solve each).
 struct Yaw {
@@ -124,7 +134,7 @@ inline Eigen::Matrix<double, 4, 6> TranslationRows(const Eigen::Vector3d& x1,
 // Epipoles e', e'' of a trifocal tensor with slices T_1, T_2, T_3: the left null vectors of
 // [u1 u2 u3] and [v1 v2 v3], u_i and v_i the left and right null vectors of T_i (eq. f1, H&Z
 // algorithm 15.1). False if either is not defined (zero).
-bool EpipolesFromTensor(const std::array<Eigen::Matrix3d, 3>& T,
+bool EpipolesFromTensor(const TensorSlices& T,
                         Eigen::Vector3d* epipole2,
                         Eigen::Vector3d* epipole3);
 

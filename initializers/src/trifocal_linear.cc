@@ -19,10 +19,8 @@ namespace trigrav {
 namespace {
 
 using Vector27d = Eigen::Matrix<double, 27, 1>;
-using Vector6d = Eigen::Matrix<double, 6, 1>;
-using TensorSlices = std::array<Eigen::Matrix3d, 3>;
-
-constexpr int kMinTriplets = 7;
+using internal::TensorSlices;
+using internal::Vector6d;
 
 // Hartley normalisation of one view (header step 1): writes x^ = H x / x_3 with the centroid of the
 // dehomogenised points at the origin and their mean distance sqrt(2), or, if some ray has x_3 = 0,
@@ -264,10 +262,12 @@ int SolveTrifocalLinear(const std::vector<Eigen::Vector3d>& x1,
                         const std::vector<Eigen::Vector3d>& x2,
                         const std::vector<Eigen::Vector3d>& x3,
                         std::vector<ThreeViewPose>* solutions) {
-  internal::CheckTriplets("SolveTrifocalLinear", kMinTriplets,
+  internal::CheckTriplets("SolveTrifocalLinear", internal::kTrifocalLinearMinTriplets,
                           std::numeric_limits<std::size_t>::max(), x1, x2, x3, solutions);
   solutions->clear();
-  if (x1.size() == kMinTriplets) return Solve<4 * kMinTriplets>(x1, x2, x3, solutions);
+  if (x1.size() == internal::kTrifocalLinearMinTriplets) {
+    return Solve<4 * internal::kTrifocalLinearMinTriplets>(x1, x2, x3, solutions);
+  }
   return Solve<Eigen::Dynamic>(x1, x2, x3, solutions);
 }
 

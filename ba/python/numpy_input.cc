@@ -15,6 +15,17 @@ std::string ShapeString(const py::array& array) {
   return shape + ")";
 }
 
+// A numpy masked array would lose its mask in the conversion: refused, the remedy named.
+void RejectMasked(const py::handle& object, const std::string& name) {
+  const py::module_ numpy_ma = py::module_::import("numpy.ma");
+  if (py::isinstance(object, numpy_ma.attr("MaskedArray"))) {
+    throw py::value_error("trigrav: " + name +
+                          ": a masked array (its mask would be ignored); pass the unmasked rows "
+                          "(a.compressed() per column, or a[~a.mask.any(axis=1)].data) or "
+                          "a.filled()");
+  }
+}
+
 // The object as a C-contiguous float64 array of the given shape (-1: any length), or ValueError
 // "trigrav: <name>: expected <what>, got ...".
 py::array_t<double> ToFloat64(const py::handle& object,
@@ -25,6 +36,7 @@ py::array_t<double> ToFloat64(const py::handle& object,
     throw py::value_error("trigrav: " + name + ": expected " + what + ", got " + got);
   };
   if (object.is_none()) fail("None");
+  RejectMasked(object, name);
   py::array array = py::array::ensure(object);
   if (!array) {
     PyErr_Clear();
@@ -102,6 +114,7 @@ std::vector<char> ToMask(const py::handle& object, const std::string& name) {
                           "triplet), got " + got);
   };
   if (object.is_none()) fail("None");
+  RejectMasked(object, name);
   py::array array = py::array::ensure(object);
   if (!array) {
     PyErr_Clear();

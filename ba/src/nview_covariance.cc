@@ -13,6 +13,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "pseudo_inverse.h"
 #include "trigrav/ba/nview_bundle_adjustment.h"
 
 namespace trigrav {
@@ -29,18 +30,6 @@ struct CameraBlock {
   Eigen::MatrixXd to_output;
   int size() const { return static_cast<int>(to_output.cols()); }
 };
-
-// Pseudo-inverse of a point's 3 x 3 block: a direction with an eigenvalue below 1e-12 of the
-// largest (a point's depth along a zero baseline) is left out; W_p has no component along it.
-Eigen::Matrix3d PseudoInverse(const Eigen::Matrix3d& v) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(v);
-  const Eigen::Vector3d values = eigen.eigenvalues();
-  Eigen::Vector3d inverse = Eigen::Vector3d::Zero();
-  for (int i = 0; i < 3; ++i) {
-    if (values[i] > 1e-12 * values[2]) inverse[i] = 1.0 / values[i];
-  }
-  return eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
-}
 
 }  // namespace
 
@@ -116,7 +105,8 @@ bool NViewBundleAdjuster::ComputeCovariances(NViewBundleAdjustmentSummary* summa
   Eigen::Matrix3d v = Eigen::Matrix3d::Zero();
   std::vector<std::pair<int, Eigen::MatrixXd>> w;  // (camera block, J_block^T J_point) of a point
   auto eliminate_point = [&]() {
-    const Eigen::Matrix3d v_inverse = PseudoInverse(v);
+    // A point's depth along a zero baseline is left out: W_p has no component along it.
+    const Eigen::Matrix3d v_inverse = internal::PseudoInverse(v, 1e-12);
     for (const auto& [a, w_a] : w) {
       for (const auto& [b, w_b] : w) {
         s.block(blocks[a].offset, blocks[b].offset, blocks[a].size(), blocks[b].size()) -=

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "trigrav/evaluation/robust_benchmark_scenes.h"
+#include "common/robust_benchmark_scenes.h"
 #include "trigrav/evaluation/synthetic_scene.h"
 
 namespace trigrav::benchmarks {

@@ -13,9 +13,9 @@
 #include <utility>
 #include <vector>
 
+#include "common/pooled_errors.h"
 #include "issue_scenes.h"
 #include "poselib_benchmarks.h"
-#include "trigrav/evaluation/pooled_errors.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/initializers/three_view_observations.h"

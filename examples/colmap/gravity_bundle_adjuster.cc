@@ -23,12 +23,11 @@
 
 #include "common/output_paths.h"
 #include "common/require_flag.h"
-#include "model_folder.h"
-#include "nview_conversion.h"
 #include "staged_file.h"
 #include "trigrav/ba/nview_bundle_adjustment.h"
 #include "trigrav/colmap/gravity_csv.h"
 #include "trigrav/colmap/model_io.h"
+#include "trigrav/colmap/nview_conversion.h"
 
 DEFINE_string(input_path, "", "COLMAP sparse model folder, binary or text (required).");
 DEFINE_string(gravity_csv,
@@ -114,7 +113,7 @@ Options AdjusterOptions() {
 // One row per image: name, id, then the covariance (layout of NViewBundleAdjustmentSummary::
 // covariances) row-major, space separated.
 std::string FormatCovarianceCsv(const colmap::Reconstruction& model,
-                                const tools::NViewInput& input,
+                                const colmap::NViewInput& input,
                                 const trigrav::NViewBundleAdjustmentSummary& summary) {
   std::ostringstream out;
   out << std::setprecision(17);
@@ -138,7 +137,7 @@ int Run() {
   const Options options = AdjusterOptions();
   const colmap::Reconstruction model = colmap::ReadModel(FLAGS_input_path);
   const colmap::GravityByImageName gravity = colmap::ReadGravityCsv(FLAGS_gravity_csv);
-  const tools::NViewInput input = tools::ToNView(model, gravity);
+  const colmap::NViewInput input = colmap::ToNView(model, gravity);
   trigrav::NViewReconstruction refined;
   const trigrav::NViewBundleAdjustmentSummary summary =
       trigrav::RefineWithGravity(input.reconstruction, {}, options, &refined);
@@ -151,7 +150,7 @@ int Run() {
     std::cerr << "error: no covariances: " << summary.message << "; nothing written" << std::endl;
     return 1;
   }
-  const colmap::Reconstruction result = tools::FromNView(model, input, refined);
+  const colmap::Reconstruction result = colmap::FromNView(model, input, refined);
   // The covariance CSV is staged before the model and committed after it: a failure leaves
   // neither.
   std::unique_ptr<tools::StagedFile> covariance_csv;
@@ -159,7 +158,7 @@ int Run() {
     covariance_csv = std::make_unique<tools::StagedFile>(
         FLAGS_covariance_csv, FormatCovarianceCsv(result, input, summary));
   }
-  tools::WriteModelFolder(
+  colmap::WriteModelCreatingParents(
       result, FLAGS_output_path,
       FLAGS_output_format == "text" ? colmap::ModelFormat::kText : colmap::ModelFormat::kBinary);
   if (covariance_csv) {

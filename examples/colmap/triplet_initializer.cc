@@ -25,18 +25,17 @@
 #include "../common/thread_note.h"
 #include "common/output_paths.h"
 #include "common/require_flag.h"
-#include "match_graph.h"
-#include "model_folder.h"
 #include "staged_file.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/ba/three_view_bundle_adjustment.h"
 #include "trigrav/colmap/database.h"
 #include "trigrav/colmap/gravity_csv.h"
+#include "trigrav/colmap/match_graph.h"
 #include "trigrav/colmap/model_io.h"
+#include "trigrav/colmap/triplet_csv.h"
+#include "trigrav/colmap/triplet_model.h"
 #include "trigrav/initializers/initial_solver.h"
 #include "trigrav/initializers/parallel_for.h"
-#include "triplet_csv.h"
-#include "triplet_model.h"
 
 DEFINE_string(database_path, "", "COLMAP database (required).");
 DEFINE_string(gravity_csv,
@@ -157,11 +156,11 @@ int Run() {
     image_of_id[image.image_id] = image;
     ids_by_name.push_back(image.image_id);
   }
-  const tools::MatchGraph graph(database.ReadTwoViewGeometries());
+  const colmap::MatchGraph graph(database.ReadTwoViewGeometries());
   const int max_triplets = FLAGS_max_triplets > 0 ? FLAGS_max_triplets : int(images.size());
   std::vector<std::array<colmap::ImageId, 3>> triplets =
-      FLAGS_triplets == "consecutive" ? tools::ConsecutiveTriplets(ids_by_name)
-                                      : tools::ConnectedTriplets(graph, ids_by_name, max_triplets);
+      FLAGS_triplets == "consecutive" ? colmap::ConsecutiveTriplets(ids_by_name)
+                                      : colmap::ConnectedTriplets(graph, ids_by_name, max_triplets);
   if (triplets.size() > std::size_t(max_triplets)) triplets.resize(max_triplets);
   if (triplets.empty()) throw std::runtime_error("no triplet of images in " + FLAGS_database_path);
 
@@ -189,20 +188,20 @@ int Run() {
     }
   }
 
-  std::vector<tools::TripletResult> results(triplets.size());
-  std::vector<std::vector<tools::Track>> tracks(triplets.size());
+  std::vector<colmap::TripletResult> results(triplets.size());
+  std::vector<std::vector<colmap::ThreeViewTrack>> tracks(triplets.size());
   const auto estimate_triplet = [&](std::size_t i) {
-    tools::TripletResult& result = results[i];
+    colmap::TripletResult& result = results[i];
     trigrav::ThreeViewObservations observations;
     for (int k = 0; k < 3; ++k) {
       result.images[k] = image_of_id.at(triplets[i][k]);
       observations.cameras[k] = camera_of_id.at(result.images[k].camera_id);
       observations.gravity_in_cam[k] = gravity_of_image.at(result.images[k].name);
     }
-    tracks[i] = tools::ThreeViewTracks(graph, triplets[i]);
+    tracks[i] = colmap::ThreeViewTracks(graph, triplets[i]);
     result.num_tracks = static_cast<int>(tracks[i].size());
     if (result.num_tracks < FLAGS_min_tracks) return;
-    for (const tools::Track& track : tracks[i]) {
+    for (const colmap::ThreeViewTrack& track : tracks[i]) {
       for (int k = 0; k < 3; ++k) {
         observations.pixels[k].push_back(keypoints.at(triplets[i][k])[track[k]]);
       }
@@ -216,13 +215,13 @@ int Run() {
   trigrav::examples::NoteFewerThreads(
       trigrav::ParallelFor(triplets.size(), FLAGS_threads, estimate_triplet));
   // Committed after the model (or alone when there is none): a failure leaves no CSV.
-  tools::StagedFile csv(FLAGS_output_csv,
-                        tools::FormatTripletCsv(results, options.bundle_adjustment.rotation_model));
+  tools::StagedFile csv(FLAGS_output_csv, colmap::FormatTripletCsv(
+                                              results, options.bundle_adjustment.rotation_model));
 
   int best = -1, num_success = 0, num_trusted = 0;
   for (std::size_t i = 0; i < results.size(); ++i) {
     num_success += results[i].estimate.success;
-    if (tools::TripletVerdict(results[i]) != "trusted") continue;
+    if (colmap::TripletVerdict(results[i]) != "trusted") continue;
     ++num_trusted;
     if (best < 0 || results[i].estimate.num_inliers > results[best].estimate.num_inliers) {
       best = static_cast<int>(i);
@@ -236,12 +235,12 @@ int Run() {
               << ")" << std::endl;
     return 1;
   }
-  const tools::TripletResult& seed = results[best];
+  const colmap::TripletResult& seed = results[best];
   std::array<std::vector<Eigen::Vector2d>, 3> seed_keypoints;
   for (int k = 0; k < 3; ++k) seed_keypoints[k] = keypoints.at(seed.images[k].image_id);
   const colmap::Reconstruction model =
-      tools::TripletModel(cameras, seed.images, seed_keypoints, tracks[best], seed.estimate);
-  tools::WriteModelFolder(model, FLAGS_output_model_path, colmap::ModelFormat::kBinary);
+      colmap::TripletModel(cameras, seed.images, seed_keypoints, tracks[best], seed.estimate);
+  colmap::WriteModelCreatingParents(model, FLAGS_output_model_path, colmap::ModelFormat::kBinary);
   csv.Commit();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

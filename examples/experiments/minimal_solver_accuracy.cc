@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "common/pooled_errors.h"
 #include "common/require_flag.h"
-#include "trigrav/evaluation/pooled_errors.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"

@@ -42,8 +42,8 @@
 #include <vector>
 
 #include "common/output_paths.h"
+#include "common/paper_protocol.h"
 #include "common/require_flag.h"
-#include "trigrav/evaluation/paper_protocol.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"

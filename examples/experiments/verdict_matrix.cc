@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "common/require_flag.h"
+#include "input_mistakes.h"
 #include "trigrav/ba/initialize_and_refine.h"
-#include "trigrav/evaluation/input_mistakes.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"

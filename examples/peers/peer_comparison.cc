@@ -31,11 +31,11 @@
 #include <vector>
 
 #include "../common/thread_note.h"
+#include "common/pooled_errors.h"
 #include "common/require_flag.h"
+#include "common/robust_benchmark_scenes.h"
 #include "peer_estimators.h"
-#include "trigrav/evaluation/pooled_errors.h"
 #include "trigrav/evaluation/pose_errors.h"
-#include "trigrav/evaluation/robust_benchmark_scenes.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"
 #include "trigrav/initializers/parallel_for.h"

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "trigrav/factors/observation_jacobian.h"
-#include "trigrav/factors/point_gauss_newton.h"
+#include "observation_jacobian.h"
+#include "point_gauss_newton.h"
 #include "trigrav/initializers/gravity.h"
 #include "trigrav/initializers/skew.h"
 

@@ -1,4 +1,4 @@
-#include "trigrav/factors/observation_jacobian.h"
+#include "observation_jacobian.h"
 
 #include <ceres/jet.h>
 

@@ -442,6 +442,33 @@ TEST(ModelIo, AFailedWriteLeavesTheModelAsItWas) {
   EXPECT_EQ(ReadModel(binary).images.rbegin()->second.name, "with space.png");
 }
 
+// WriteModelCreatingParents creates the missing folders above the model and removes them again
+// when the write fails.
+TEST(ModelIo, CreatingParentsLeavesNoFolderWhenTheWriteFails) {
+  const std::string scratch = ScratchFolder();
+  const auto one_image_model = [](const std::string& name) {
+    Reconstruction model;
+    model.cameras[1] = {1, Camera::FromColmap("PINHOLE", {500, 500, 320, 240}), 640, 480};
+    model.images[1].image_id = 1;
+    model.images[1].name = name;
+    model.images[1].camera_id = 1;
+    return model;
+  };
+  WriteModelCreatingParents(one_image_model("a.png"), scratch + "/a/b/model", ModelFormat::kText);
+  EXPECT_EQ(ReadModel(scratch + "/a/b/model").images.at(1).name, "a.png");
+  // A name with a space cannot be written as text: no folder is left.
+  EXPECT_THROW(WriteModelCreatingParents(one_image_model("a b.png"), scratch + "/c/d/model",
+                                         ModelFormat::kText),
+               std::runtime_error);
+  EXPECT_FALSE(std::filesystem::exists(scratch + "/c"));
+  // A folder holding something else is not replaced.
+  WriteText(scratch + "/a/b/model/notes.txt", "mine");
+  EXPECT_THROW(WriteModelCreatingParents(one_image_model("b.png"), scratch + "/a/b/model",
+                                         ModelFormat::kBinary),
+               std::runtime_error);
+  EXPECT_EQ(ReadModel(scratch + "/a/b/model").images.at(1).name, "a.png");
+}
+
 }  // namespace
 }  // namespace colmap
 }  // namespace trigrav

@@ -1,5 +1,5 @@
 # The ctests of the COLMAP tools (examples/colmap/), added when they are built (with
-# trigrav::colmap): the unit tests of their shared code (tests/colmap_tools/), bad flags (exit
+# trigrav::colmap; the library code they call is tested in tests/colmap/): bad flags (exit
 # status 2 and "error: <message>", bad_flag_test.cmake), the synthetic end-to-end run of
 # make_gravity_csv and gravity_bundle_adjuster with bad input (check_colmap_tools.cmake), and the
 # README's walkthrough with the real COLMAP on five KITTI frames (check_colmap_walkthrough.cmake;
@@ -87,12 +87,6 @@ trigrav_add_bad_flag_test(gravity_bundle_adjuster_negative_iterations gravity_bu
   "--max_iterations must be >= 0" ${adjuster_ok} --max_iterations=-1)
 trigrav_add_bad_flag_test(gravity_bundle_adjuster_zero_threads gravity_bundle_adjuster
   "--threads must be in \\[1, 256\\]" ${adjuster_ok} --threads=0)
-
-# The tools' shared code: tracks and triplets on hand-made matches, the seed model and the
-# triplet CSV of a hand-made estimate.
-trigrav_add_gtest(trigrav_colmap_tools_tests
-  SOURCES colmap_tools/match_graph_test.cc colmap_tools/triplet_model_test.cc
-  LIBRARIES trigrav_colmap_tools)
 
 # The synthetic end-to-end run and its bad input.
 add_executable(write_synthetic_colmap_model

@@ -11,6 +11,15 @@ function(run)
   endif()
 endfunction()
 run(${CMAKE_COMMAND} --install ${TRIGRAV_BINARY_DIR} --prefix ${WORK_DIR}/prefix)
+# The installed headers are the library's: no experiment scaffolding (examples/common/,
+# tests/scenes/) and no internals (factors/src/).
+foreach(header evaluation/paper_protocol.h evaluation/pooled_errors.h
+               evaluation/robust_benchmark_scenes.h evaluation/input_mistakes.h
+               factors/point_gauss_newton.h factors/observation_jacobian.h)
+  if(EXISTS ${WORK_DIR}/prefix/include/trigrav/${header})
+    message(FATAL_ERROR "installed, but not part of the library: include/trigrav/${header}")
+  endif()
+endforeach()
 run(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build
     -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release
     -DCMAKE_BUILD_RPATH=${WORK_DIR}/prefix/lib)

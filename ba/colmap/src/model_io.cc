@@ -2,7 +2,9 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
+#include <system_error>
 #include <vector>
 
 #include "file_io.h"
@@ -91,6 +93,33 @@ void WriteModel(const Reconstruction& reconstruction,
                                             ? internal::FormatBinaryModel(reconstruction)
                                             : internal::FormatTextModel(reconstruction);
   internal::WriteModelSet(folder, NamedFiles(ModelFileNames(format), contents));
+}
+
+void WriteModelCreatingParents(const Reconstruction& reconstruction,
+                               const std::string& folder,
+                               ModelFormat format) {
+  namespace fs = std::filesystem;
+  // The missing folders above `folder`, deepest first.
+  std::vector<fs::path> missing;
+  for (fs::path above = fs::path(folder).lexically_normal().parent_path();
+       !above.empty() && !fs::exists(above) && above != above.parent_path();
+       above = above.parent_path()) {
+    missing.push_back(above);
+  }
+  std::vector<fs::path> created;
+  try {
+    for (auto above = missing.rbegin(); above != missing.rend(); ++above) {
+      fs::create_directory(*above);
+      created.push_back(*above);
+    }
+    WriteModel(reconstruction, folder, format);
+  } catch (...) {
+    std::error_code ignored;
+    for (auto above = created.rbegin(); above != created.rend(); ++above) {
+      fs::remove(*above, ignored);  // only an empty folder is removed
+    }
+    throw;
+  }
 }
 
 }  // namespace colmap

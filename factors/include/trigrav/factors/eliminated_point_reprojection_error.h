@@ -38,7 +38,7 @@
 #include "trigrav/initializers/observation_residual.h"
 
 namespace trigrav {
-struct TripletLinearization;  // point_gauss_newton.h
+struct TripletLinearization;  // factors/src/point_gauss_newton.h (internal)
 
 // Residual: PixelResidual or BearingResidual (observation_residual.h); both are instantiated.
 template <typename Residual>

@@ -23,19 +23,15 @@ struct RobustThreeViewOptions {
   // Choosing ransac.max_error (default 2 px): the minimal models are upright, so a tilt error of
   // the IMU moves the true inliers by about f sigma_tilt pixels (f in px, sigma_tilt the per-frame
   // pitch / roll sigma in radians; 0.1 deg at f = 719 px: 1.25 px) on top of the pixel noise
-  // sigma_px. Measured (examples/kitti/README.md, "Threshold and IMU noise";
-  // examples/initialize_and_refine/README.md, "Choosing the threshold"):
+  // sigma_px. The rule:
   //  - upright RANSAC (max_tilt_correction_deg = 0; the yaw-only model) takes the gravity as exact:
   //    3 sigma_px with exact gravity. With an IMU's gravity it loses the true motion, and a larger
-  //    threshold only trades the verdict's refusals for wrong successes (KITTI 00, frames 0-119,
-  //    0.1 deg: 36 of 118 refused and none more than 10 deg off at 1.5 px, 2 refused and 5 off at
-  //    4 px): correct the tilt instead;
+  //    threshold only trades the verdict's refusals for wrong successes: correct the tilt instead;
   //  - tilt-correcting RANSAC (InitializeAndRefine with the gravity-prior model): 3 sigma_px is
-  //    enough (KITTI: the same errors from 1 to 6 px at 0-0.25 deg; synthetic, f = 500 px: median
-  //    errors within 7 % (rotation) and 11 % (translation) of the best threshold, within 3 % at
-  //    sqrt((3 sigma_px)^2 + (1.4 f sigma_tilt)^2)).
-  // Too large a threshold lets a rotation without baseline explain the inliers: at f = 500 px up to
-  // 1 % of synthetic scenes fail as "no parallax" at 12 px, 3.5 % at 24 px.
+  //    enough; sqrt((3 sigma_px)^2 + (1.4 f sigma_tilt)^2) is closer still to the best threshold.
+  // Too large a threshold lets a rotation without baseline explain the inliers (failures as "no
+  // parallax"). The measurements behind the rule: examples/kitti/README.md, "Threshold and IMU
+  // noise", and examples/initialize_and_refine/README.md, "Choosing the threshold".
   RansacOptions ransac;
   // The inlier threshold for bearing observations (ThreeViewObservations::bearings), in degrees,
   // in place of ransac.max_error (pixels); the default is 2 px at a focal length of 1150 px.
@@ -84,14 +80,12 @@ struct RobustThreeViewOptions {
   // The largest standard deviation (deg) of the rotations and of the centres' directions that the
   // winner's inliers may leave at a noise of ransac.max_error / 3 (the Gauss-Newton prediction,
   // derivations.md section 7.7) for a success. Rule behind the default: a 2D error of Rayleigh
-  // scale sigma exceeds 5 deg with probability exp(-12.5 / sigma^2), 3e-4 at 1.25 deg. On KITTI 00
-  // and 02 with exact gravity the upright estimates predict at most 0.32 deg; two gravity-prior
-  // estimates at the end of 00 predict 1.9 and 2.4 deg and are refused (README, robustness).
-  // +infinity: no test.
+  // scale sigma exceeds 5 deg with probability exp(-12.5 / sigma^2), 3e-4 at 1.25 deg. What it
+  // refuses on real data: derivations.md section 7.7. +infinity: no test.
   double max_pose_sigma_deg = 1.25;
   // The fewest inliers a success may have. Rule behind the default: COLMAP's minimum for a
-  // two-view geometry (15); with fewer, the predicted precision itself is unreliable (KITTI with 5
-  // tracks: successes 30-170 deg off at a predicted 0.2-1.1 deg; README, robustness).
+  // two-view geometry (15); with fewer, the predicted precision itself is unreliable
+  // (derivations.md section 7.7).
   int min_inliers = 15;
 
   // Throws std::invalid_argument naming the first bad field.

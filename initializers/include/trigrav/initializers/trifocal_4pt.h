@@ -32,17 +32,13 @@ namespace trigrav {
 //      runs at most one step after the enforcement of more than 4 triplets;
 //   4. the common sign of the translations by a cheirality vote, scale |c_2| = 1;
 //   5. poses mapped to the original frames with the corrected eq. b4 (see gravity.h).
-// At 1 px (minimal_solver_accuracy --trials=3000: 4 triplets, f = 500 px) the default's median
-// rotation error is 0.63 deg, against 0.87 deg for the enforcement with the re-solve and one
-// polish step, 2.8 deg without the polish and 11.5 deg for the least-squares read alone; noise-free
-// all are exact to rounding. recovery = kEnforced (with the default polish to convergence) is the
-// most accurate choice with noise (1 px: 0.57 deg; derivations.md section 4.7 has more) at 1.6x
-// the default's time at 1 px and 1.9x noise-free. The default is chosen for RANSAC, whose samples
-// are 4 triplets: what counts there is how many usable models a second of sampling yields. At 1 px
-// the default gives every error under 5 deg in 62 % of the scenes at 3.0-3.3 us per call, kEnforced
-// in 65 % at 4.9-5.1 us: about 1.5x as many usable samples per unit time. The default's bad samples
-// are worse (90th percentile 39 against 21 deg), which RANSAC discards either way. A caller who
-// solves 4 noisy triplets once, without RANSAC, should take kEnforced.
+// Noise-free every recovery is exact to rounding. With noise, recovery = kEnforced (with the
+// default polish to convergence) is the most accurate choice, at a higher cost per call. The
+// default is chosen for RANSAC, whose samples are 4 triplets: what counts there is how many usable
+// models a second of sampling yields, and the default yields more of them per unit time; its bad
+// samples are worse, which RANSAC discards either way. A caller who solves 4 noisy triplets once,
+// without RANSAC, should take kEnforced. The errors and times behind this choice: derivations.md
+// section 4.7.
 // With noise, the result depends slightly on which yaw the caller's alignment rotations choose (the
 // normalisation |q| = 1 is not yaw-invariant); the gravity overload always uses
 // GravityAlignmentFromGravity.
@@ -80,16 +76,15 @@ struct Trifocal4ptOptions {
   // With the enforcement (kEnforced; the default recovery for more than 4 triplets, and for 4
   // where its read is undefined): times to re-estimate the epipoles from the current pose and
   // repeat enforcement and the translation solve (derivations.md section 4.5; not in the paper).
-  // Each pass costs about a microsecond; without polish it lowers the 1 px, 4-triplet median
-  // rotation error from 2.8 deg (0 passes) to 2.3 (3) and 1.9 (10) (3,000 scenes,
-  // SyntheticSceneOptions defaults). With one polish step (0.87 deg) it is not needed.
+  // Without polish each pass lowers the error of noisy input; with one polish step it is not
+  // needed (its errors and cost: derivations.md section 4.5).
   int epipole_iterations = 0;
   // At most this many Gauss-Newton steps on the incidence residuals over yaws and centres jointly
-  // (step 3 above; about 0.37 microseconds each on 4 triplets). The polish ends early once a step
-  // is at rounding level or the step before the last changed the cost by less than 1 %: one step
-  // noise-free, 5.85 on average at 1 px from the least-squares read. The default recovery runs at
-  // most one step for more than 4 triplets (more lowered the algebraic cost but not KITTI's
-  // errors); the explicit recoveries run up to this many at any size. 0 leaves the polish out.
+  // (step 3 above). The polish ends early once a step is at rounding level or the step before the
+  // last changed the cost by less than 1 %: one step noise-free. The default recovery runs at most
+  // one step for more than 4 triplets (the cost is algebraic: more steps lower it, not the
+  // reprojection error); the explicit recoveries run up to this many at any size. 0 leaves the
+  // polish out. Step counts and times: derivations.md section 4.5.
   int polish_iterations = 8;
 
   // Throws std::invalid_argument naming the first bad field: recovery or epipoles not one of the

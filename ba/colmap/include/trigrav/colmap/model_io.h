@@ -37,6 +37,13 @@ void WriteModel(const Reconstruction& reconstruction,
                 const std::string& folder,
                 ModelFormat format);
 
+// WriteModel into a `folder` whose missing parent folders are created first (top down) and removed
+// again when the write fails, so that a failed write leaves no empty folder behind. Throws what
+// WriteModel throws, or std::filesystem::filesystem_error when a parent folder cannot be created.
+void WriteModelCreatingParents(const Reconstruction& reconstruction,
+                               const std::string& folder,
+                               ModelFormat format);
+
 }  // namespace colmap
 }  // namespace trigrav
 

@@ -1,10 +1,10 @@
-#ifndef TRIGRAV_EVALUATION_ROBUST_BENCHMARK_SCENES_H_
-#define TRIGRAV_EVALUATION_ROBUST_BENCHMARK_SCENES_H_
+#ifndef TRIGRAV_EXAMPLES_COMMON_ROBUST_BENCHMARK_SCENES_H_
+#define TRIGRAV_EXAMPLES_COMMON_ROBUST_BENCHMARK_SCENES_H_
 
 // The scene set of the robust benchmark (examples/benchmarks/robust_benchmark), on which
 // peer_comparison times the peers too: 20 scenes from seed 2026 of 500 triplets with 30 % outliers
 // and 0.5 px image noise (the other SyntheticSceneOptions at their defaults: f = 500 px, 640 x 480,
-// exact IMU), inlier threshold 1.5 px (3 sigma).
+// exact IMU), inlier threshold 1.5 px (3 sigma). Header only, not part of the installed library.
 
 #include <cstdint>
 #include <random>
@@ -38,4 +38,4 @@ inline std::vector<SyntheticScene> RobustBenchmarkScenes(
 
 }  // namespace trigrav
 
-#endif  // TRIGRAV_EVALUATION_ROBUST_BENCHMARK_SCENES_H_
+#endif  // TRIGRAV_EXAMPLES_COMMON_ROBUST_BENCHMARK_SCENES_H_

@@ -1,5 +1,5 @@
-#ifndef TRIGRAV_FACTORS_OBSERVATION_JACOBIAN_H_
-#define TRIGRAV_FACTORS_OBSERVATION_JACOBIAN_H_
+#ifndef TRIGRAV_FACTORS_SRC_OBSERVATION_JACOBIAN_H_
+#define TRIGRAV_FACTORS_SRC_OBSERVATION_JACOBIAN_H_
 
 // The residual of one observation (trigrav/initializers/observation_residual.h) at a point given in
 // the observing camera's frame, with its derivative d r / d x_cam (2 x 3), for the analytic
@@ -7,6 +7,8 @@
 // and bearings, forward-mode automatic differentiation (Jets of 3, no allocation) for the
 // distortion models. Each returns false where the residual functor does (the observation cannot
 // see the point) or where the result is not finite.
+//
+// Internal to the factors (factors/src, not installed): no installed header includes it.
 
 #include <Eigen/Core>
 
@@ -63,4 +65,4 @@ inline bool LinearizeObservation(const BearingResidual& residual,
 
 }  // namespace trigrav
 
-#endif  // TRIGRAV_FACTORS_OBSERVATION_JACOBIAN_H_
+#endif  // TRIGRAV_FACTORS_SRC_OBSERVATION_JACOBIAN_H_

@@ -1,5 +1,5 @@
-#ifndef TRIGRAV_FACTORS_POINT_GAUSS_NEWTON_H_
-#define TRIGRAV_FACTORS_POINT_GAUSS_NEWTON_H_
+#ifndef TRIGRAV_FACTORS_SRC_POINT_GAUSS_NEWTON_H_
+#define TRIGRAV_FACTORS_SRC_POINT_GAUSS_NEWTON_H_
 
 // One triplet's point X (camera 1's frame) with the three cameras fixed: its robust cost
 // f = 1/2 sum_k rho(|r_k|^2) over the views k = 1, 2, 3, the Gauss-Newton system of f with the
@@ -11,6 +11,8 @@
 // The observations: a callable observe(k, x_cam, &r, &d_r_d_x) with LinearizeObservation's
 // contract (observation_jacobian.h) for view k's observation, so that each caller keeps its own
 // storage of them. The loss: nullptr for the squared loss.
+//
+// Internal to the factors (factors/src, not installed): no installed header includes it.
 
 #include <ceres/loss_function.h>
 
@@ -137,4 +139,4 @@ bool MinimizeTripletCost(const Observe& observe,
 
 }  // namespace trigrav
 
-#endif  // TRIGRAV_FACTORS_POINT_GAUSS_NEWTON_H_
+#endif  // TRIGRAV_FACTORS_SRC_POINT_GAUSS_NEWTON_H_

@@ -1,11 +1,14 @@
-#include "match_graph.h"
+#include "trigrav/colmap/match_graph.h"
 
 #include <algorithm>
 #include <queue>
 #include <set>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 
-namespace trigrav::colmap_tools {
+namespace trigrav {
+namespace colmap {
 namespace {
 
 using KeypointMatch = std::array<std::uint32_t, 2>;
@@ -66,8 +69,8 @@ std::pair<int, int> Hub(const MatchGraph& graph, const std::array<ImageId, 3>& i
 
 }  // namespace
 
-MatchGraph::MatchGraph(const std::vector<colmap::TwoViewGeometry>& geometries) {
-  for (const colmap::TwoViewGeometry& geometry : geometries) {
+MatchGraph::MatchGraph(const std::vector<TwoViewGeometry>& geometries) {
+  for (const TwoViewGeometry& geometry : geometries) {
     if (geometry.image_id1 == geometry.image_id2) continue;
     const bool swap = geometry.image_id1 > geometry.image_id2;
     std::vector<KeypointMatch> matches = geometry.matches;
@@ -123,13 +126,14 @@ std::vector<std::array<std::uint32_t, 2>> MatchGraph::Matches(ImageId a, ImageId
   return matches;
 }
 
-std::vector<Track> ThreeViewTracks(const MatchGraph& graph, const std::array<ImageId, 3>& images) {
+std::vector<ThreeViewTrack> ThreeViewTracks(const MatchGraph& graph,
+                                            const std::array<ImageId, 3>& images) {
   const int h = Hub(graph, images).first;
   if (h < 0) return {};
   const int x = (h + 1) % 3, y = (h + 2) % 3;
-  std::vector<Track> tracks;
+  std::vector<ThreeViewTrack> tracks;
   for (const std::array<std::uint32_t, 2>& hx : graph.Matches(images[h], images[x])) {
-    Track track;
+    ThreeViewTrack track;
     track[h] = hx[0];
     track[x] = hx[1];
     if (!graph.Match(images[h], track[h], images[y], &track[y])) continue;
@@ -155,6 +159,10 @@ std::vector<std::array<ImageId, 3>> ConsecutiveTriplets(
 std::vector<std::array<ImageId, 3>> ConnectedTriplets(const MatchGraph& graph,
                                                       const std::vector<ImageId>& images_by_name,
                                                       int max_triplets) {
+  if (max_triplets < 1) {
+    throw std::invalid_argument("ConnectedTriplets: max_triplets must be >= 1, not " +
+                                std::to_string(max_triplets));
+  }
   std::map<ImageId, int> rank;
   for (std::size_t i = 0; i < images_by_name.size(); ++i) rank[images_by_name[i]] = int(i);
   const auto by_name = [&rank](ImageId a, ImageId b) { return rank.at(a) < rank.at(b); };
@@ -211,4 +219,5 @@ std::vector<std::array<ImageId, 3>> ConnectedTriplets(const MatchGraph& graph,
   return taken;
 }
 
-}  // namespace trigrav::colmap_tools
+}  // namespace colmap
+}  // namespace trigrav

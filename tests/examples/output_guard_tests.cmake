@@ -33,12 +33,13 @@ endfunction()
 
 set(same "is the same path as")
 
-# The model folder of the COLMAP tools and the guard itself, as unit tests.
-if(TARGET trigrav_colmap_tools)
-  trigrav_add_gtest(trigrav_tool_outputs_test
-    SOURCES ${CMAKE_CURRENT_LIST_DIR}/tool_outputs_test.cc
-    LIBRARIES trigrav_colmap_tools gflags)
-  target_include_directories(trigrav_tool_outputs_test PRIVATE ${PROJECT_SOURCE_DIR}/examples)
+# The guard itself, as a unit test (header only: examples/common/output_paths.h).
+if(TRIGRAV_BUILD_EXAMPLES)
+  find_package(gflags REQUIRED)
+  trigrav_add_gtest(trigrav_output_paths_test
+    SOURCES ${CMAKE_CURRENT_LIST_DIR}/output_paths_test.cc
+    LIBRARIES gflags)
+  target_include_directories(trigrav_output_paths_test PRIVATE ${PROJECT_SOURCE_DIR}/examples)
 endif()
 
 # triplet_initializer: the database, the gravity CSV, the --flagfile.

@@ -1,4 +1,4 @@
-#include "triplet_csv.h"
+#include "trigrav/colmap/triplet_csv.h"
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -7,7 +7,8 @@
 
 #include "trigrav/ba/three_view_covariance.h"
 
-namespace trigrav::colmap_tools {
+namespace trigrav {
+namespace colmap {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / M_PI;
@@ -120,8 +121,8 @@ std::string FormatTripletCsv(const std::vector<TripletResult>& results,
   const ThreeViewCovarianceLayout layout = ThreeViewCovarianceLayout::For(rotation_model);
   for (const TripletResult& result : results) {
     const ThreeViewEstimate& estimate = result.estimate;
-    for (const colmap::DatabaseImage& image : result.images) out << Quoted(image.name) << ',';
-    for (const colmap::DatabaseImage& image : result.images) out << image.image_id << ',';
+    for (const DatabaseImage& image : result.images) out << Quoted(image.name) << ',';
+    for (const DatabaseImage& image : result.images) out << image.image_id << ',';
     out << result.num_tracks << ',' << TripletVerdict(result) << ',' << estimate.success << ','
         << estimate.num_inliers << ',' << estimate.ransac.num_inliers << ','
         << estimate.ransac.iterations;
@@ -139,4 +140,5 @@ std::string FormatTripletCsv(const std::vector<TripletResult>& results,
   return out.str();
 }
 
-}  // namespace trigrav::colmap_tools
+}  // namespace colmap
+}  // namespace trigrav

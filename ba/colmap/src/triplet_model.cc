@@ -1,21 +1,22 @@
-#include "triplet_model.h"
+#include "trigrav/colmap/triplet_model.h"
 
 #include <stdexcept>
 #include <string>
 
-namespace trigrav::colmap_tools {
+namespace trigrav {
+namespace colmap {
 
-colmap::Reconstruction TripletModel(const std::vector<colmap::ColmapCamera>& cameras,
-                                    const std::array<colmap::DatabaseImage, 3>& images,
-                                    const std::array<std::vector<Eigen::Vector2d>, 3>& keypoints,
-                                    const std::vector<Track>& tracks,
-                                    const ThreeViewEstimate& estimate) {
+Reconstruction TripletModel(const std::vector<ColmapCamera>& cameras,
+                            const std::array<DatabaseImage, 3>& images,
+                            const std::array<std::vector<Eigen::Vector2d>, 3>& keypoints,
+                            const std::vector<ThreeViewTrack>& tracks,
+                            const ThreeViewEstimate& estimate) {
   const ThreeViewRefinement& refinement = estimate.refinement;
   if (!refinement.summary.success) {
     throw std::invalid_argument("TripletModel: the triplet's refinement did not succeed");
   }
-  colmap::Reconstruction model;
-  for (const colmap::ColmapCamera& camera : cameras) model.cameras[camera.camera_id] = camera;
+  Reconstruction model;
+  for (const ColmapCamera& camera : cameras) model.cameras[camera.camera_id] = camera;
   const std::array<CameraPose, 3> cam_from_world = {CameraPose(), refinement.pose.cam2_from_cam1,
                                                     refinement.pose.cam3_from_cam1};
   for (int k = 0; k < 3; ++k) {
@@ -24,23 +25,23 @@ colmap::Reconstruction TripletModel(const std::vector<colmap::ColmapCamera>& cam
                                   std::to_string(images[k].camera_id) +
                                   ", which the database does not have");
     }
-    colmap::ColmapImage& image = model.images[images[k].image_id];
+    ColmapImage& image = model.images[images[k].image_id];
     image.image_id = images[k].image_id;
     image.name = images[k].name;
     image.camera_id = images[k].camera_id;
     image.cam_from_world = cam_from_world[k];
     image.points2D = keypoints[k];
-    image.point3D_ids.assign(keypoints[k].size(), colmap::kInvalidPoint3DId);
+    image.point3D_ids.assign(keypoints[k].size(), kInvalidPoint3DId);
   }
   for (std::size_t p = 0; p < refinement.triplets.size(); ++p) {
-    const colmap::Point3DId point_id = p + 1;
-    const Track& track = tracks.at(refinement.triplets[p]);
-    colmap::ColmapPoint3D& point = model.points3D[point_id];
+    const Point3DId point_id = p + 1;
+    const ThreeViewTrack& track = tracks.at(refinement.triplets[p]);
+    ColmapPoint3D& point = model.points3D[point_id];
     point.xyz = refinement.points_in_cam1[p];
     point.color = {128, 128, 128};
     point.error = refinement.residual_norms[p].mean();
     for (int k = 0; k < 3; ++k) {
-      colmap::ColmapImage& image = model.images[images[k].image_id];
+      ColmapImage& image = model.images[images[k].image_id];
       if (track[k] >= image.points2D.size()) {
         throw std::invalid_argument("TripletModel: keypoint " + std::to_string(track[k]) +
                                     " of image " + image.name + " does not exist");
@@ -53,4 +54,5 @@ colmap::Reconstruction TripletModel(const std::vector<colmap::ColmapCamera>& cam
   return model;
 }
 
-}  // namespace trigrav::colmap_tools
+}  // namespace colmap
+}  // namespace trigrav

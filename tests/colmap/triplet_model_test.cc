@@ -1,7 +1,7 @@
 // The seed model (examples/colmap/triplet_model.h) and the triplet CSV (triplet_csv.h) of a
 // hand-made estimate.
 
-#include "triplet_model.h"
+#include "trigrav/colmap/triplet_model.h"
 
 #include <gtest/gtest.h>
 
@@ -10,30 +10,31 @@
 #include <stdexcept>
 #include <string>
 
-#include "triplet_csv.h"
+#include "trigrav/colmap/triplet_csv.h"
 
-namespace trigrav::colmap_tools {
+namespace trigrav {
+namespace colmap {
 namespace {
 
 // Two cameras, images 7, 3, 5 (camera 2, 1, 2) with 4, 3, 5 keypoints, tracks of keypoints
 // (0,0,0), (1,2,4), (3,1,2), of which the refinement kept the first and the third.
 struct Fixture {
-  std::vector<colmap::ColmapCamera> cameras;
-  std::array<colmap::DatabaseImage, 3> images;
+  std::vector<ColmapCamera> cameras;
+  std::array<DatabaseImage, 3> images;
   std::array<std::vector<Eigen::Vector2d>, 3> keypoints;
-  std::vector<Track> tracks = {{0, 0, 0}, {1, 2, 4}, {3, 1, 2}};
+  std::vector<ThreeViewTrack> tracks = {{0, 0, 0}, {1, 2, 4}, {3, 1, 2}};
   ThreeViewEstimate estimate;
 
   Fixture() {
-    for (colmap::CameraId id : {1u, 2u}) {
-      colmap::ColmapCamera& camera = cameras.emplace_back();
+    for (CameraId id : {1u, 2u}) {
+      ColmapCamera& camera = cameras.emplace_back();
       camera.camera_id = id;
       camera.camera = Camera::FromColmap("PINHOLE", {500.0, 500.0, 320.0, 240.0});
       camera.width = 640;
       camera.height = 480;
     }
-    images = {colmap::DatabaseImage{7, "a.png", 2}, colmap::DatabaseImage{3, "b.png", 1},
-              colmap::DatabaseImage{5, "c.png", 2}};
+    images = {DatabaseImage{7, "a.png", 2}, DatabaseImage{3, "b.png", 1},
+              DatabaseImage{5, "c.png", 2}};
     const int sizes[3] = {4, 3, 5};
     for (int k = 0; k < 3; ++k) {
       for (int i = 0; i < sizes[k]; ++i) keypoints[k].emplace_back(10.0 * i + k, 20.0);
@@ -56,12 +57,11 @@ struct Fixture {
 
 TEST(TripletModelTest, EveryKeypointEveryCameraAndTheInlierPoints) {
   const Fixture f;
-  const colmap::Reconstruction model =
-      TripletModel(f.cameras, f.images, f.keypoints, f.tracks, f.estimate);
+  const Reconstruction model = TripletModel(f.cameras, f.images, f.keypoints, f.tracks, f.estimate);
   EXPECT_NO_THROW(model.Check());
   EXPECT_EQ(model.cameras.size(), 2u);
   ASSERT_EQ(model.images.size(), 3u);
-  const colmap::ColmapImage& first = model.images.at(7);
+  const ColmapImage& first = model.images.at(7);
   EXPECT_EQ(first.name, "a.png");
   EXPECT_EQ(first.camera_id, 2u);
   EXPECT_TRUE(first.cam_from_world.R.isIdentity());
@@ -71,16 +71,15 @@ TEST(TripletModelTest, EveryKeypointEveryCameraAndTheInlierPoints) {
   EXPECT_TRUE(model.images.at(5).cam_from_world.t.isApprox(Eigen::Vector3d(0.0, 0.0, -2.0)));
   // All keypoints, in the database's order; a point id only on the kept tracks' keypoints.
   for (int k = 0; k < 3; ++k) {
-    const colmap::ColmapImage& image = model.images.at(f.images[k].image_id);
+    const ColmapImage& image = model.images.at(f.images[k].image_id);
     EXPECT_EQ(image.points2D, f.keypoints[k]);
     int with_point = 0;
-    for (const colmap::Point3DId id : image.point3D_ids)
-      with_point += id != colmap::kInvalidPoint3DId;
+    for (const Point3DId id : image.point3D_ids) with_point += id != kInvalidPoint3DId;
     EXPECT_EQ(with_point, 2);
   }
-  EXPECT_EQ(model.images.at(5).point3D_ids[4], colmap::kInvalidPoint3DId);  // track 1, dropped
+  EXPECT_EQ(model.images.at(5).point3D_ids[4], kInvalidPoint3DId);  // track 1, dropped
   ASSERT_EQ(model.points3D.size(), 2u);
-  const colmap::ColmapPoint3D& second = model.points3D.at(2);
+  const ColmapPoint3D& second = model.points3D.at(2);
   EXPECT_TRUE(second.xyz.isApprox(Eigen::Vector3d(-1.0, 0.0, 8.0)));
   EXPECT_DOUBLE_EQ(second.error, 0.3);
   ASSERT_EQ(second.track.size(), 3u);
@@ -91,7 +90,7 @@ TEST(TripletModelTest, EveryKeypointEveryCameraAndTheInlierPoints) {
 
 TEST(TripletModelTest, RejectsAFailedRefinementAndUnknownKeypoints) {
   Fixture f;
-  std::vector<Track> bad_tracks = f.tracks;
+  std::vector<ThreeViewTrack> bad_tracks = f.tracks;
   bad_tracks[2][1] = 3;  // image 3 has 3 keypoints
   EXPECT_THROW(TripletModel(f.cameras, f.images, f.keypoints, bad_tracks, f.estimate),
                std::invalid_argument);
@@ -152,4 +151,5 @@ TEST(TripletCsvTest, VerdictsAndOneFieldPerColumn) {
 }
 
 }  // namespace
-}  // namespace trigrav::colmap_tools
+}  // namespace colmap
+}  // namespace trigrav

@@ -1,19 +1,20 @@
 // The three-view tracks and triplets of examples/colmap/match_graph.h on hand-made matches.
 
-#include "match_graph.h"
+#include "trigrav/colmap/match_graph.h"
 
 #include <gtest/gtest.h>
 
 #include <array>
 #include <vector>
 
-namespace trigrav::colmap_tools {
+namespace trigrav {
+namespace colmap {
 namespace {
 
-colmap::TwoViewGeometry Pair(colmap::ImageId a,
-                             colmap::ImageId b,
-                             const std::vector<std::array<std::uint32_t, 2>>& matches) {
-  colmap::TwoViewGeometry geometry;
+TwoViewGeometry Pair(ImageId a,
+                     ImageId b,
+                     const std::vector<std::array<std::uint32_t, 2>>& matches) {
+  TwoViewGeometry geometry;
   geometry.image_id1 = a;
   geometry.image_id2 = b;
   geometry.config = 2;
@@ -37,7 +38,7 @@ TEST(MatchGraphTest, DropsAmbiguousMatchesAndAnswersBothWays) {
   EXPECT_FALSE(graph.Match(1, 0, 2, &keypoint));
   EXPECT_FALSE(graph.Match(1, 3, 2, &keypoint));
   EXPECT_FALSE(graph.Match(2, 13, 1, &keypoint));
-  EXPECT_EQ(graph.Neighbors(2), std::vector<colmap::ImageId>({1}));
+  EXPECT_EQ(graph.Neighbors(2), std::vector<ImageId>({1}));
 }
 
 TEST(MatchGraphTest, PairsStoredWithTheLargerIdFirstAreSwapped) {
@@ -54,9 +55,11 @@ TEST(ThreeViewTracksTest, ChainsThroughTheHubAndDropsContradictedChains) {
   const MatchGraph graph({Pair(1, 2, {{0, 10}, {1, 11}, {2, 12}, {5, 15}}),
                           Pair(2, 3, {{10, 20}, {11, 21}, {12, 22}}),
                           Pair(1, 3, {{0, 20}, {1, 29}})});
-  EXPECT_EQ(ThreeViewTracks(graph, {1, 2, 3}), (std::vector<Track>{{0, 10, 20}, {2, 12, 22}}));
+  EXPECT_EQ(ThreeViewTracks(graph, {1, 2, 3}),
+            (std::vector<ThreeViewTrack>{{0, 10, 20}, {2, 12, 22}}));
   // The same tracks in the order of the images given.
-  EXPECT_EQ(ThreeViewTracks(graph, {3, 1, 2}), (std::vector<Track>{{20, 0, 10}, {22, 2, 12}}));
+  EXPECT_EQ(ThreeViewTracks(graph, {3, 1, 2}),
+            (std::vector<ThreeViewTrack>{{20, 0, 10}, {22, 2, 12}}));
   // No image matched to both others: no track.
   EXPECT_TRUE(ThreeViewTracks(graph, {1, 2, 4}).empty());
 }
@@ -104,4 +107,5 @@ TEST(TripletsTest, ConnectedTripletsGreedilyByTrackCountUntilEveryImageIsCovered
 }
 
 }  // namespace
-}  // namespace trigrav::colmap_tools
+}  // namespace colmap
+}  // namespace trigrav

@@ -1,19 +1,21 @@
-#ifndef TRIGRAV_EXAMPLES_COLMAP_TRIPLET_MODEL_H_
-#define TRIGRAV_EXAMPLES_COLMAP_TRIPLET_MODEL_H_
+#ifndef TRIGRAV_COLMAP_TRIPLET_MODEL_H_
+#define TRIGRAV_COLMAP_TRIPLET_MODEL_H_
 
-// The COLMAP sparse model of one initialised triplet, the seed `colmap mapper --input_path`
-// continues from.
+// The COLMAP sparse model of one initialised triplet (InitializeAndRefine on the tracks of
+// ThreeViewTracks), the seed `colmap mapper --input_path` continues from. Write it with
+// WriteModel or WriteModelCreatingParents (model_io.h).
 
 #include <Eigen/Core>
 #include <array>
 #include <vector>
 
-#include "match_graph.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/colmap/database.h"
+#include "trigrav/colmap/match_graph.h"
 #include "trigrav/colmap/reconstruction.h"
 
-namespace trigrav::colmap_tools {
+namespace trigrav {
+namespace colmap {
 
 // The model of a triplet whose refinement succeeded (estimate.refinement.summary.success):
 //  - cameras: every camera of the database (`cameras`);
@@ -26,12 +28,13 @@ namespace trigrav::colmap_tools {
 //    the error and a grey colour; the keypoints of a point carry its id, the others none.
 // Throws std::invalid_argument if the refinement did not succeed, a camera id is unknown or a
 // track names a keypoint the image does not have.
-colmap::Reconstruction TripletModel(const std::vector<colmap::ColmapCamera>& cameras,
-                                    const std::array<colmap::DatabaseImage, 3>& images,
-                                    const std::array<std::vector<Eigen::Vector2d>, 3>& keypoints,
-                                    const std::vector<Track>& tracks,
-                                    const ThreeViewEstimate& estimate);
+Reconstruction TripletModel(const std::vector<ColmapCamera>& cameras,
+                            const std::array<DatabaseImage, 3>& images,
+                            const std::array<std::vector<Eigen::Vector2d>, 3>& keypoints,
+                            const std::vector<ThreeViewTrack>& tracks,
+                            const ThreeViewEstimate& estimate);
 
-}  // namespace trigrav::colmap_tools
+}  // namespace colmap
+}  // namespace trigrav
 
-#endif  // TRIGRAV_EXAMPLES_COLMAP_TRIPLET_MODEL_H_
+#endif  // TRIGRAV_COLMAP_TRIPLET_MODEL_H_

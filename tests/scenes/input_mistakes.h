@@ -1,10 +1,11 @@
-#ifndef TRIGRAV_EVALUATION_INPUT_MISTAKES_H_
-#define TRIGRAV_EVALUATION_INPUT_MISTAKES_H_
+#ifndef TRIGRAV_TESTS_SCENES_INPUT_MISTAKES_H_
+#define TRIGRAV_TESTS_SCENES_INPUT_MISTAKES_H_
 
 // Common mistakes in preparing three-view input, applied to a synthetic scene: what the mistakes
 // matrix (tests/ba/mistakes_matrix_test.cc) and the verdict tool (examples/experiments/
-// verdict_matrix) feed to InitializeAndRefine. Each gives the observations a user making the
-// mistake would pass; the scene's ground truth stays the right answer.
+// verdict_matrix, which has tests/scenes on its include path) feed to InitializeAndRefine. Each
+// gives the observations a user making the mistake would pass; the scene's ground truth stays the
+// right answer.
 
 #include <Eigen/Core>
 #include <array>
@@ -93,4 +94,4 @@ inline ThreeViewObservations WithMistake(const SyntheticScene& scene, InputMista
 
 }  // namespace trigrav
 
-#endif  // TRIGRAV_EVALUATION_INPUT_MISTAKES_H_
+#endif  // TRIGRAV_TESTS_SCENES_INPUT_MISTAKES_H_

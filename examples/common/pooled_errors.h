@@ -1,10 +1,11 @@
-#ifndef TRIGRAV_EVALUATION_POOLED_ERRORS_H_
-#define TRIGRAV_EVALUATION_POOLED_ERRORS_H_
+#ifndef TRIGRAV_EXAMPLES_COMMON_POOLED_ERRORS_H_
+#define TRIGRAV_EXAMPLES_COMMON_POOLED_ERRORS_H_
 
 // Errors of many three-view estimates against their ground truth with views 2 and 3 pooled (the
 // paper's convention, derivations.md section 8.4): per estimate two rotation and two
 // translation-direction errors in degrees and one relative-scale error |log(s_est / s_gt)|
-// (pose_errors.h).
+// (pose_errors.h). The accumulator of the example tools' accuracy tables (header only; a failure
+// counted as 180 deg is their convention), not part of the installed library.
 
 #include <limits>
 #include <vector>
@@ -45,4 +46,4 @@ struct PooledErrors {
 
 }  // namespace trigrav
 
-#endif  // TRIGRAV_EVALUATION_POOLED_ERRORS_H_
+#endif  // TRIGRAV_EXAMPLES_COMMON_POOLED_ERRORS_H_

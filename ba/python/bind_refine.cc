@@ -33,8 +33,6 @@ void BindBundleAdjustmentOptions(py::module_& m) {
       "Three-view bundle adjustment: rotation model, loss, sigmas, Ceres solver settings.");
   py::enum_<BundleOptions::Engine>(options.cls(), "Engine")
       .value("CERES", BundleOptions::Engine::kCeres, "ceres::Solve on the adjuster's problem")
-      .value("DEDICATED", BundleOptions::Engine::kDedicated,
-             "trigrav's own Levenberg-Marquardt with the points eliminated, same optimum")
       .value("CERES_POINTS_ELIMINATED", BundleOptions::Engine::kCeresPointsEliminated,
              "ceres::Solve on the pose blocks, each point eliminated by variable projection");
   py::enum_<BundleOptions::RotationModel>(options.cls(), "RotationModel")
@@ -82,9 +80,11 @@ void BindRefinement(py::module_& m) {
                                                "What a bundle adjustment did.")
       .def_readonly("success", &ThreeViewBundleAdjustmentSummary::success)
       .def_readonly("message", &ThreeViewBundleAdjustmentSummary::message)
+      .def_readonly("engine", &ThreeViewBundleAdjustmentSummary::engine,
+                    "the Engine that solved (CERES where CERES_POINTS_ELIMINATED solved problem())")
       .def_readonly("num_points", &ThreeViewBundleAdjustmentSummary::num_points)
       .def_readonly("num_residual_blocks", &ThreeViewBundleAdjustmentSummary::num_residual_blocks)
-      .def_readonly("solve_time_s", &ThreeViewBundleAdjustmentSummary::solve_time_s)
+      .def_readonly("solve_s", &ThreeViewBundleAdjustmentSummary::solve_s, "wall-clock seconds")
       .def_property_readonly("initial_cost", &ThreeViewBundleAdjustmentSummary::InitialCost)
       .def_property_readonly("final_cost", &ThreeViewBundleAdjustmentSummary::FinalCost)
       .def_property_readonly("iterations", &ThreeViewBundleAdjustmentSummary::Iterations)
@@ -121,7 +121,6 @@ void BindRefinement(py::module_& m) {
           "omega3, u2, C3); shape (0, 0) when not computed")
       .def_readonly("summary", &ThreeViewRefinement::summary)
       .def_readonly("build_s", &ThreeViewRefinement::build_s, "adjuster set-up, seconds")
-      .def_readonly("solve_s", &ThreeViewRefinement::solve_s)
       .def_readonly("covariance_s", &ThreeViewRefinement::covariance_s)
       .def("__repr__", [](const ThreeViewRefinement& r) {
         return "ThreeViewRefinement(success=" + std::string(r.summary.success ? "True" : "False") +
@@ -205,14 +204,9 @@ void BindInitializeAndRefine(py::module_& m) {
       .def_readonly("message", &ThreeViewEstimate::message,
                     "why not, when not success; a note when the refinement fell back")
       .def_readonly("cause", &ThreeViewEstimate::cause, "FailureCause")
-      .def_readonly("initial", &ThreeViewEstimate::initial, "the RANSAC winner")
-      .def_property_readonly(
-          "initial_inliers",
-          [](const ThreeViewEstimate& e) { return MaskToArray(e.initial_inliers); },
-          "bool array: inliers of the RANSAC winner")
-      .def_readonly("ransac", &ThreeViewEstimate::ransac)
-      .def_readonly("gravity", &ThreeViewEstimate::gravity)
-      .def_readonly("evidence", &ThreeViewEstimate::evidence)
+      .def_readonly("robust", &ThreeViewEstimate::robust,
+                    "the RANSAC stage (RobustThreeViewEstimate): the RANSAC winner's pose and "
+                    "inliers, statistics, gravity consistency, evidence")
       .def_readonly("refined", &ThreeViewEstimate::refined,
                     "the answer: the refined pose (the initial one if not refined)")
       .def_property_readonly(

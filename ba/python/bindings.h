@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace trigrav::python {
@@ -35,8 +36,10 @@ class OptionsClass {
         name_(name),
         fields_(std::make_shared<std::vector<std::string>>()) {}
 
-  template <typename Value>
-  OptionsClass& Field(const char* name, Value T::*member, const char* doc) {
+  // A field of T or of a base of T (e.g. the shared BundleAdjustmentOptions).
+  template <typename Value, typename Owner>
+  OptionsClass& Field(const char* name, Value Owner::*member, const char* doc) {
+    static_assert(std::is_base_of_v<Owner, T>, "a field of T or of one of its bases");
     class_.def_readwrite(name, member, doc);
     fields_->push_back(name);
     return *this;

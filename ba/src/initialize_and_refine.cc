@@ -95,11 +95,9 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
   RobustThreeViewOptions robust = options.robust;
   robust.max_tilt_correction_deg = TiltCorrectionBoundDeg(options);
   robust.max_gravity_inconsistency_deg = GravityInconsistencyBoundDeg(options);
-  const RobustThreeViewEstimate ransac = EstimateThreeViewPoseRobust(observations, robust);
+  estimate.robust = EstimateThreeViewPoseRobust(observations, robust);
+  const RobustThreeViewEstimate& ransac = estimate.robust;
   estimate.timings.ransac_s = SecondsSince(start);
-  estimate.ransac = ransac.ransac;
-  estimate.gravity = ransac.gravity;
-  estimate.evidence = ransac.evidence;
   estimate.cause = ransac.cause;
   if (!ransac.success || !ransac.pose.IsFinite()) {
     estimate.message = ransac.success ? "initial pose is not finite" : ransac.message;
@@ -107,8 +105,6 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
     return estimate;
   }
   estimate.success = true;
-  estimate.initial = ransac.pose;
-  estimate.initial_inliers = ransac.inliers;
   estimate.refined = ransac.pose;
   estimate.inliers = ransac.inliers;
   estimate.num_inliers = ransac.ransac.num_inliers;
@@ -130,7 +126,7 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
         observations, error, estimate.refined, inliers, options.bundle_adjustment,
         run == 0 ? nullptr : &estimate.refinement);
     timings.build_s += refinement.build_s;
-    timings.solve_s += refinement.solve_s;
+    timings.solve_s += refinement.summary.solve_s;
     timings.covariance_s += refinement.covariance_s;
     if (options.bundle_adjustment.stop_requested && options.bundle_adjustment.stop_requested()) {
       estimate.success = false;
@@ -171,7 +167,7 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
   estimate.timings.total_s = SecondsSince(start);
   // Only the yaw-only model fixes the tilt; the gravity-prior one frees it and may rightly move a
   // RANSAC pose further (synthetic, 0.5 deg of IMU noise: 4 of 150 calls).
-  const double shift = PoseShiftDeg(estimate.initial, estimate.refined);
+  const double shift = PoseShiftDeg(estimate.robust.pose, estimate.refined);
   if (options.bundle_adjustment.rotation_model ==
           ThreeViewBundleAdjustmentOptions::RotationModel::kYawOnly &&
       shift > kMaxRefinementShiftDeg) {

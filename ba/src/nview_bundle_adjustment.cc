@@ -153,28 +153,11 @@ void NViewBundleAdjustmentConfig::Check(const NViewReconstruction& reconstructio
 }
 
 void NViewBundleAdjustmentOptions::Check() const {
-  const std::string where = "NViewBundleAdjustmentOptions";
-  auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
-  auto tolerance = [](double v) { return v >= 0.0 && std::isfinite(v); };
-  if (!positive(loss_scale_px)) Fail(where, "loss_scale_px must be positive and finite");
-  if (!positive(pixel_sigma_px)) Fail(where, "pixel_sigma_px must be positive and finite");
-  if (!positive(gravity_sigma_deg)) Fail(where, "gravity_sigma_deg must be positive and finite");
-  if (max_num_iterations < 0) Fail(where, "max_num_iterations must be >= 0");
-  if (num_threads < 1) Fail(where, "num_threads must be >= 1");
-  if (!tolerance(function_tolerance)) Fail(where, "function_tolerance must be >= 0 and finite");
-  if (!tolerance(gradient_tolerance)) Fail(where, "gradient_tolerance must be >= 0 and finite");
-  if (!tolerance(parameter_tolerance)) Fail(where, "parameter_tolerance must be >= 0 and finite");
-  if (rotation_model != RotationModel::kYawOnly && rotation_model != RotationModel::kGravityPrior) {
-    Fail(where, "unknown rotation_model");
-  }
-  if (loss != LossType::kNone && loss != LossType::kHuber && loss != LossType::kCauchy) {
-    Fail(where, "unknown loss");
-  }
-  if (!internal::IsLinearSolverType(linear_solver_type)) Fail(where, "unknown linear_solver_type");
+  CheckSharedFields("NViewBundleAdjustmentOptions");
 }
 
 ceres::Solver::Options NViewBundleAdjustmentOptions::CeresSolverOptions() const {
-  ceres::Solver::Options solver_options = internal::SharedSolverOptions(*this);
+  ceres::Solver::Options solver_options = BundleAdjustmentOptions::CeresSolverOptions();
   // Only there: Ceres 2.1's CGNR aborts on SCHUR_JACOBI (a CHECK that Solver::Options::IsValid
   // does not anticipate); the other solvers keep Ceres' default.
   if (linear_solver_type == ceres::ITERATIVE_SCHUR) {
@@ -484,6 +467,8 @@ NViewBundleAdjustmentSummary NViewBundleAdjuster::Solve() {
     solver_options.linear_solver_ordering = std::move(ordering);
   }
 
+  internal::StopRequestCallback stop_request(options_.stop_requested);
+  if (options_.stop_requested) solver_options.callbacks.push_back(&stop_request);
   std::string error;
   if (!solver_options.IsValid(&error)) {
     summary.message = "invalid Ceres options: " + error;
@@ -491,8 +476,7 @@ NViewBundleAdjustmentSummary NViewBundleAdjuster::Solve() {
   }
   const auto start = std::chrono::steady_clock::now();
   ceres::Solve(solver_options, problem_.get(), &summary.ceres_summary);
-  summary.solve_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   bool finite = true;
   for (std::size_t k = 0; k < input_.images.size(); ++k) {
@@ -500,14 +484,16 @@ NViewBundleAdjustmentSummary NViewBundleAdjuster::Solve() {
         finite && std::isfinite(yaws_[k]) && quaternions_[k].allFinite() && centers_[k].allFinite();
   }
   for (const Eigen::Vector3d& x : points_) finite = finite && x.allFinite();
-  if (!summary.ceres_summary.IsSolutionUsable() || !finite ||
+  const bool stopped = options_.stop_requested && options_.stop_requested();
+  if (stopped || !summary.ceres_summary.IsSolutionUsable() || !finite ||
       !std::isfinite(summary.ceres_summary.final_cost)) {
     yaws_ = start_yaws;
     quaternions_ = start_quaternions;
     centers_ = start_centers;
     points_ = start_points;
-    summary.message =
-        !finite ? "the solution is not finite" : "Ceres failed: " + summary.ceres_summary.message;
+    summary.message = stopped   ? std::string("stopped on request (stop_requested)")
+                      : !finite ? "the solution is not finite"
+                                : "Ceres failed: " + summary.ceres_summary.message;
     return summary;
   }
   summary.success = true;

@@ -36,7 +36,7 @@ struct CameraBlock {
 bool NViewBundleAdjuster::ComputeCovariances(NViewBundleAdjustmentSummary* summary) {
   const auto start = std::chrono::steady_clock::now();
   auto finish = [&](bool ok, const char* why) {
-    summary->covariance_time_s =
+    summary->covariance_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!ok) summary->message = why;
     return ok;

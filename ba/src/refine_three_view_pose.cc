@@ -55,9 +55,7 @@ ThreeViewRefinement RefineThreeViewPose(const ThreeViewObservations& observation
     refinement.summary.message = adjuster.message();
     return refinement;
   }
-  start = std::chrono::steady_clock::now();
   refinement.summary = adjuster.Solve();
-  refinement.solve_s = SecondsSince(start);
   refinement.pose = adjuster.CurrentPose();
   refinement.triplets = adjuster.triplet_indices();
   refinement.points_in_cam1 = adjuster.points();

@@ -7,6 +7,7 @@
 #include <ceres/types.h>
 
 #include <algorithm>
+#include <functional>
 #include <thread>
 
 namespace trigrav {
@@ -40,24 +41,19 @@ inline bool IsLinearSolverType(ceres::LinearSolverType type) {
          parsed == type;
 }
 
-// Ceres options from the fields both adjusters' options have (linear_solver_type,
-// max_num_iterations, num_threads, function_tolerance, gradient_tolerance, parameter_tolerance):
-// silent (nothing on stdout or stderr: num_threads bounded by CeresNumThreads), the radius capped
-// at kMaxTrustRegionRadius.
-template <typename AdjusterOptions>
-ceres::Solver::Options SharedSolverOptions(const AdjusterOptions& options) {
-  ceres::Solver::Options solver_options;
-  solver_options.linear_solver_type = options.linear_solver_type;
-  solver_options.max_num_iterations = options.max_num_iterations;
-  solver_options.num_threads = CeresNumThreads(options.num_threads);
-  solver_options.function_tolerance = options.function_tolerance;
-  solver_options.gradient_tolerance = options.gradient_tolerance;
-  solver_options.parameter_tolerance = options.parameter_tolerance;
-  solver_options.logging_type = ceres::SILENT;
-  solver_options.minimizer_progress_to_stdout = false;
-  solver_options.max_trust_region_radius = kMaxTrustRegionRadius;
-  return solver_options;
-}
+// Ceres' callback that ends a solve when the options' stop_requested says so; the solve's caller
+// adds it to ceres::Solver::Options::callbacks while it lives.
+class StopRequestCallback : public ceres::IterationCallback {
+ public:
+  explicit StopRequestCallback(const std::function<bool()>& stop_requested)
+      : stop_requested_(stop_requested) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+    return stop_requested_ && stop_requested_() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const std::function<bool()>& stop_requested_;
+};
 
 }  // namespace internal
 }  // namespace trigrav

@@ -18,7 +18,6 @@
 #include "best_fit_yaw.h"
 #include "robust_loss.h"
 #include "shared_solver_options.h"
-#include "three_view_lm_solver.h"
 #include "trigrav/factors/angle_manifold.h"
 #include "trigrav/factors/eliminated_point_reprojection_error.h"
 #include "trigrav/factors/reprojection_factors.h"
@@ -41,22 +40,8 @@ ceres::CostFunction* MakeFactor(bool yaw_only,
              : ReprojectionError<Residual>::Create(residual);
 }
 
-// Ends a Ceres solve when the caller's stop_requested says so.
-class StopOnRequest : public ceres::IterationCallback {
- public:
-  explicit StopOnRequest(const std::function<bool()>& stop_requested)
-      : stop_requested_(stop_requested) {}
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
-    return stop_requested_() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
-  }
-
- private:
-  const std::function<bool()>& stop_requested_;
-};
-
 constexpr std::pair<ThreeViewBundleAdjustmentOptions::Engine, const char*> kEngineNames[] = {
     {ThreeViewBundleAdjustmentOptions::Engine::kCeres, "ceres"},
-    {ThreeViewBundleAdjustmentOptions::Engine::kDedicated, "dedicated"},
     {ThreeViewBundleAdjustmentOptions::Engine::kCeresPointsEliminated, "ceres_points_eliminated"}};
 
 }  // namespace
@@ -97,36 +82,21 @@ ThreeViewBundleAdjustmentConfig ThreeViewBundleAdjustmentConfig::FromInlierMask(
 }
 
 void ThreeViewBundleAdjustmentOptions::Check() const {
-  auto require = [](bool ok, const char* what) {
-    if (!ok) {
-      throw std::invalid_argument(std::string("trigrav: ThreeViewBundleAdjustmentOptions: ") +
-                                  what);
-    }
+  const std::string name = "ThreeViewBundleAdjustmentOptions";
+  CheckSharedFields(name);
+  auto require = [&](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument("trigrav: " + name + ": " + what);
   };
   auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
-  require(positive(loss_scale_px), "loss_scale_px must be positive and finite");
-  require(positive(pixel_sigma_px), "pixel_sigma_px must be positive and finite");
-  require(positive(loss_scale_deg), "loss_scale_deg must be positive and finite");
-  require(positive(bearing_sigma_deg), "bearing_sigma_deg must be positive and finite");
-  require(positive(gravity_sigma_deg), "gravity_sigma_deg must be positive and finite");
-  require(max_num_iterations >= 0, "max_num_iterations must be >= 0");
-  require(num_threads >= 1, "num_threads must be >= 1");
-  require(function_tolerance >= 0.0, "function_tolerance must be >= 0");
-  require(gradient_tolerance >= 0.0, "gradient_tolerance must be >= 0");
-  require(parameter_tolerance >= 0.0, "parameter_tolerance must be >= 0");
   require(std::any_of(std::begin(kEngineNames), std::end(kEngineNames),
                       [this](const auto& known) { return known.first == engine; }),
           "unknown engine");
-  require(
-      rotation_model == RotationModel::kYawOnly || rotation_model == RotationModel::kGravityPrior,
-      "unknown rotation_model");
-  require(loss == LossType::kNone || loss == LossType::kHuber || loss == LossType::kCauchy,
-          "unknown loss");
-  require(internal::IsLinearSolverType(linear_solver_type), "unknown linear_solver_type");
+  require(positive(loss_scale_deg), "loss_scale_deg must be positive and finite");
+  require(positive(bearing_sigma_deg), "bearing_sigma_deg must be positive and finite");
 }
 
 ceres::Solver::Options ThreeViewBundleAdjustmentOptions::CeresSolverOptions() const {
-  ceres::Solver::Options solver_options = internal::SharedSolverOptions(*this);
+  ceres::Solver::Options solver_options = BundleAdjustmentOptions::CeresSolverOptions();
   // Started at the cap instead of Ceres' 1e4: from 1e4 the first steps on driving triplets are all
   // accepted with a relative decrease near 1 while the radius only triples per step. At the cap
   // the last run of a refinement of KITTI 00 took 5.7 instead of 8.5 iterations, medians within
@@ -288,7 +258,7 @@ bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial,
   }
   built_ = true;
   message_.clear();
-  // The dedicated engine needs no ceres::Problem; problem() builds it when asked.
+  // kCeresPointsEliminated solves a problem of its own; problem() builds this one when asked.
   if (options_.engine == ThreeViewBundleAdjustmentOptions::Engine::kCeres) BuildCeresProblem();
   return true;
 }
@@ -399,7 +369,7 @@ void ThreeViewBundleAdjuster::SetEliminationOrdering(ceres::Solver::Options* sol
   // for, given. Only over the adjuster's own blocks: blocks a caller added keep Ceres' search. A
   // group is ordered by address, so each camera block has its own group, in the order Ceres' search
   // finds them (yaw2, C2, yaw3, C3: the order the residual blocks introduced them), which keeps
-  // Ceres' arithmetic, and the dedicated engine's agreement with it, as without the ordering.
+  // Ceres' arithmetic as without the ordering.
   const bool schur = solver_options->linear_solver_type == ceres::DENSE_SCHUR ||
                      solver_options->linear_solver_type == ceres::SPARSE_SCHUR ||
                      solver_options->linear_solver_type == ceres::ITERATIVE_SCHUR;
@@ -492,8 +462,8 @@ ThreeViewBundleAdjustmentSummary ThreeViewBundleAdjuster::Solve() {
   const std::vector<Eigen::Vector3d> points_backup = points_;
 
   ceres::Solver::Options solver_options = options_.CeresSolverOptions();
-  StopOnRequest stop_on_request(options_.stop_requested);
-  if (options_.stop_requested) solver_options.callbacks.push_back(&stop_on_request);
+  internal::StopRequestCallback stop_request(options_.stop_requested);
+  if (options_.stop_requested) solver_options.callbacks.push_back(&stop_request);
   std::string error;
   if (!solver_options.IsValid(&error)) {
     out.message = "invalid Ceres options: " + error;
@@ -501,30 +471,26 @@ ThreeViewBundleAdjustmentSummary ThreeViewBundleAdjuster::Solve() {
   }
   ceres::Solver::Summary& summary = out.ceres_summary;
   const auto start = std::chrono::steady_clock::now();
-  if (options_.engine == ThreeViewBundleAdjustmentOptions::Engine::kDedicated) {
-    internal::SolveThreeViewLm(this, &summary);
-  } else if (options_.engine == ThreeViewBundleAdjustmentOptions::Engine::kCeresPointsEliminated &&
-             !config_.constant_points && problem_ == nullptr) {
+  out.engine = options_.engine;
+  if (options_.engine == ThreeViewBundleAdjustmentOptions::Engine::kCeresPointsEliminated &&
+      !config_.constant_points && problem_ == nullptr) {
     if (observations_.HasBearings()) {
       SolveWithEliminatedPoints<BearingResidual>(solver_options, &summary);
     } else {
       SolveWithEliminatedPoints<PixelResidual>(solver_options, &summary);
     }
   } else {
+    out.engine = ThreeViewBundleAdjustmentOptions::Engine::kCeres;
     if (problem_ == nullptr) BuildCeresProblem();
     ceres::Solver::Options ceres_options = solver_options;
     SetEliminationOrdering(&ceres_options);
     ceres::Solve(ceres_options, problem_.get(), &summary);
   }
-  out.solve_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const bool stopped = options_.stop_requested && options_.stop_requested();
   if (stopped || !summary.IsSolutionUsable() || !CurrentPose().IsFinite()) {
     out.message = stopped ? std::string("stopped on request (stop_requested)")
-                          : (options_.engine == ThreeViewBundleAdjustmentOptions::Engine::kDedicated
-                                 ? "the dedicated solver failed: "
-                                 : "Ceres failed: ") +
-                                summary.message;
+                          : "Ceres failed: " + summary.message;
     for (int j = 0; j < 2; ++j) {
       yaw_[j] = yaw_backup[j];
       for (int i = 0; i < 4; ++i) quaternion_[j][i] = quaternion_backup[j][i];

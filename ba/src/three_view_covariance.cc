@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "pseudo_inverse.h"
-#include "three_view_lm_solver.h"
 
 namespace trigrav {
 namespace {
@@ -18,11 +17,21 @@ namespace {
 using RotationModel = ThreeViewBundleAdjustmentOptions::RotationModel;
 
 // Largest pose dimension (kGravityPrior); matrices of the pose use fixed-size storage.
-constexpr int kMaxPoseSize = internal::kMaxThreeViewPoseSize;
+constexpr int kMaxPoseSize = 11;
 using PoseMatrix =
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxPoseSize, kMaxPoseSize>;
 using PoseVector = Eigen::Matrix<double, kMaxPoseSize, 1>;
 using PosePointMatrix = Eigen::Matrix<double, kMaxPoseSize, 3>;
+
+// The Gauss-Newton information J^T J of the adjuster's residuals through their losses (Ceres'
+// corrector), by blocks, in Ceres' tangent coordinates of the pose blocks ordered as
+// ThreeViewCovarianceLayout (rotation 2, rotation 3, C2, C3): pose-pose, per point the point-point
+// block and the pose-point coupling. No point blocks when the points are constant.
+struct ThreeViewInformation {
+  PoseMatrix pose;
+  std::vector<Eigen::Matrix3d> point;
+  std::vector<PosePointMatrix> coupling;
+};
 
 // Eigenvalues below this fraction of the largest make a matrix rank-deficient.
 constexpr double kMinRelativeEigenvalue = 1e-12;
@@ -61,7 +70,7 @@ ThreeViewPose UnitBaseline(const ThreeViewPose& pose) {
 // n is the pose's tangent size.
 bool CeresInformation(ThreeViewBundleAdjuster* adjuster,
                       int n,
-                      internal::ThreeViewInformation* information,
+                      ThreeViewInformation* information,
                       std::string* message) {
   ceres::Problem* problem = adjuster->problem();
   // Jacobian columns: pose blocks in the layout's order (Ceres tangent coordinates), then the
@@ -179,15 +188,8 @@ bool ComputeThreeViewPoseCovariance(ThreeViewBundleAdjuster* adjuster,
   const ThreeViewCovarianceLayout layout =
       ThreeViewCovarianceLayout::For(adjuster->options().rotation_model);
   const int n = layout.Size();  // also the pose blocks' tangent size in Ceres
-  internal::ThreeViewInformation information;
-  if (adjuster->options().engine == ThreeViewBundleAdjustmentOptions::Engine::kDedicated) {
-    if (!internal::EvaluateThreeViewInformation(adjuster, &information)) {
-      *message = "covariance: the Jacobian could not be evaluated";
-      return false;
-    }
-  } else if (!CeresInformation(adjuster, n, &information, message)) {
-    return false;
-  }
+  ThreeViewInformation information;
+  if (!CeresInformation(adjuster, n, &information, message)) return false;
   PoseMatrix pose_information = information.pose;
   // Schur complement: the pose's information with the points marginalised.
   for (std::size_t p = 0; p < information.point.size(); ++p) {

@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
         return 1;
       }
       v.solve_s.push_back(cpu_s);
-      v.covariance_s.push_back(summary.covariance_time_s);
+      v.covariance_s.push_back(summary.covariance_s);
       v.iterations = summary.Iterations();
       v.final_cost = summary.FinalCost();
     }

@@ -9,7 +9,7 @@
 //  - BM_RobustEstimateIssueScenes/3pt/<n>: the 3-point robust estimate;
 //  - BM_InitializeAndRefine/<raw|engine>/<n>: InitializeAndRefine (3pt RANSAC, yaw-only
 //    refinement with one re-classification round): RANSAC only ("raw"), or refined by each engine
-//    (EngineName: ceres, dedicated, ceres_points_eliminated); counters are per-call medians of the
+//    (EngineName: ceres, ceres_points_eliminated); counters are per-call medians of the
 //    stages (ms, ThreeViewEstimateTimings), of the inliers, of the refinement runs and of the
 //    last run's iterations.
 // Built with PoseLib, BM_PoseLib/... times its two-pair estimate_relative_pose and its refinement
@@ -26,12 +26,12 @@
 #include <utility>
 #include <vector>
 
+#include "common/pooled_errors.h"
+#include "common/robust_benchmark_scenes.h"
 #include "issue_scenes.h"
 #include "poselib_benchmarks.h"
 #include "trigrav/ba/initialize_and_refine.h"
-#include "trigrav/evaluation/pooled_errors.h"
 #include "trigrav/evaluation/pose_errors.h"
-#include "trigrav/evaluation/robust_benchmark_scenes.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"
 #include "trigrav/initializers/initial_solver.h"
@@ -142,7 +142,6 @@ int main(int argc, char** argv) {
   const std::pair<std::string, Refinement> refinements[] = {
       {"raw", std::nullopt},
       {trigrav::EngineName(Engine::kCeres), Engine::kCeres},
-      {trigrav::EngineName(Engine::kDedicated), Engine::kDedicated},
       {trigrav::EngineName(Engine::kCeresPointsEliminated), Engine::kCeresPointsEliminated}};
   for (const auto& [name, refinement] : refinements) {
     benchmark::RegisterBenchmark(("BM_InitializeAndRefine/" + name).c_str(),

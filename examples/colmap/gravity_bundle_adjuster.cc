@@ -181,9 +181,8 @@ int Run() {
             << "  cost " << summary.InitialCost() << " -> " << summary.FinalCost()
             << "; median over the images of their RMS reprojection error after: "
             << (rms.empty() ? 0.0 : rms[rms.size() / 2]) << " px\n"
-            << "  " << summary.Iterations() << " iterations, " << summary.solve_time_s
-            << " s solve";
-  if (options.compute_covariance) std::cout << ", " << summary.covariance_time_s << " s covariance";
+            << "  " << summary.Iterations() << " iterations, " << summary.solve_s << " s solve";
+  if (options.compute_covariance) std::cout << ", " << summary.covariance_s << " s covariance";
   std::cout << "\n  " << summary.BriefReport() << "\n  model written to " << FLAGS_output_path
             << " (" << FLAGS_output_format << ")\n";
   return 0;

@@ -66,10 +66,9 @@ DEFINE_string(rotation_model,
 DEFINE_double(gravity_sigma_deg, 0.1, "IMU gravity sigma (deg) of the gravity-prior model.");
 DEFINE_string(
     engine,
-    "ceres",
-    "Bundle-adjustment engine (ThreeViewBundleAdjustmentOptions::Engine, the same "
-    "optimum): ceres (the times in README.md were made with it), ceres_points_eliminated (the "
-    "library's default) or dedicated (trigrav's own solver, the fastest).");
+    trigrav::EngineName(trigrav::ThreeViewBundleAdjustmentOptions().engine),
+    "Bundle-adjustment engine (ThreeViewBundleAdjustmentOptions::Engine, the same optimum): "
+    "ceres_points_eliminated (the library's default) or ceres (a block per point).");
 DEFINE_bool(check_gravity,
             true,
             "Compare with a gravity-free estimate also after a success "

@@ -94,12 +94,12 @@ void PrintMistake(InputMistake mistake, const std::vector<trigrav::SyntheticScen
     const trigrav::ThreeViewEstimate estimate =
         trigrav::InitializeAndRefine(observations, Options(FLAGS_seed + s));
     ms.push_back(1e3 * Seconds(start));
-    ratio.push_back(static_cast<double>(estimate.ransac.num_inliers) / observations.size());
-    if (estimate.gravity.measured) {
-      const auto& angle = estimate.gravity.pair_inconsistency_deg;
+    ratio.push_back(static_cast<double>(estimate.robust.ransac.num_inliers) / observations.size());
+    if (estimate.robust.gravity.measured) {
+      const auto& angle = estimate.robust.gravity.pair_inconsistency_deg;
       max_pair_deg.push_back(*std::max_element(angle.begin(), angle.end()));
     }
-    culprit_named += estimate.gravity.inconsistent_camera != 0;
+    culprit_named += estimate.robust.gravity.inconsistent_camera != 0;
     if (!estimate.success) {
       ++failures;
       if (message.empty()) message = estimate.message;

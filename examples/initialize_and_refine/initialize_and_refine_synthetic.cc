@@ -20,7 +20,7 @@
 //
 //   initialize_and_refine_synthetic                       # 3pt, 1 px, 20 % outliers, 20 scenes
 //   initialize_and_refine_synthetic --solver=5pt --imu_noise_deg=0.5 --rotation_model=gravity-prior
-//   initialize_and_refine_synthetic --points=375 --engine=dedicated
+//   initialize_and_refine_synthetic --points=375 --engine=ceres
 //   initialize_and_refine_synthetic --experiment=sweep --output=sweep.csv         # about 40 s
 //   initialize_and_refine_synthetic --experiment=sample20 --output=sample20.csv   # about 5 min
 
@@ -42,11 +42,11 @@
 
 #include "../common/thread_note.h"
 #include "common/output_paths.h"
+#include "common/paper_protocol.h"
+#include "common/pooled_errors.h"
 #include "common/require_flag.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/ba/three_view_bundle_adjustment.h"
-#include "trigrav/evaluation/paper_protocol.h"
-#include "trigrav/evaluation/pooled_errors.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"
@@ -68,8 +68,7 @@ DEFINE_string(
     engine,
     trigrav::EngineName(trigrav::ThreeViewBundleAdjustmentOptions().engine),
     "single: Bundle-adjustment engine (ThreeViewBundleAdjustmentOptions::Engine, the same "
-    "optimum): ceres_points_eliminated (the library's default), ceres or dedicated "
-    "(trigrav's own solver, the fastest).");
+    "optimum): ceres_points_eliminated (the library's default) or ceres (a block per point).");
 DEFINE_string(loss, "huber", "single: robust loss on the pixel residuals: huber, cauchy, none.");
 DEFINE_double(loss_scale_px, 2.0, "single: scale of the robust loss in pixels.");
 DEFINE_double(gravity_sigma_deg, 0.5, "single: IMU angular sigma of the gravity prior in degrees.");
@@ -247,15 +246,15 @@ void RunSingle() {
       continue;
     }
     const trigrav::ThreeViewPoseErrors raw =
-        trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, estimate.initial);
+        trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, estimate.robust.pose);
     const trigrav::ThreeViewPoseErrors refined =
         trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, estimate.refined);
     raw_errors.Add(raw);
     refined_errors.Add(refined);
     ransac_ms.push_back(1e3 * estimate.timings.ransac_s);
     refinement_ms.push_back(1e3 * estimate.timings.refinement_s);
-    ransac_found += estimate.ransac.num_inliers;
-    ransac_true += CountTrue(estimate.initial_inliers, scene.is_inlier);
+    ransac_found += estimate.robust.ransac.num_inliers;
+    ransac_true += CountTrue(estimate.robust.inliers, scene.is_inlier);
     refined_found += estimate.num_inliers;
     refined_true += CountTrue(estimate.inliers, scene.is_inlier);
     if (trial < FLAGS_print_trials) {
@@ -263,12 +262,12 @@ void RunSingle() {
           "trial %d: %d true inliers, RANSAC found %d, refinement kept %d; worse view: rotation "
           "%.4f -> %.4f deg, translation %.4f -> %.4f deg, scale %.5f -> %.5f; RANSAC %.2f ms, "
           "refinement %.2f ms%s%s\n  %s\n",
-          trial, CountSet(scene.is_inlier), estimate.ransac.num_inliers, estimate.num_inliers,
-          raw.MaxRotationDeg(), refined.MaxRotationDeg(), raw.MaxTranslationDeg(),
-          refined.MaxTranslationDeg(), raw.relative_scale, refined.relative_scale,
-          1e3 * estimate.timings.ransac_s, 1e3 * estimate.timings.refinement_s,
-          estimate.message.empty() ? "" : "; ", estimate.message.c_str(),
-          estimate.refinement.summary.BriefReport().c_str());
+          trial, CountSet(scene.is_inlier), estimate.robust.ransac.num_inliers,
+          estimate.num_inliers, raw.MaxRotationDeg(), refined.MaxRotationDeg(),
+          raw.MaxTranslationDeg(), refined.MaxTranslationDeg(), raw.relative_scale,
+          refined.relative_scale, 1e3 * estimate.timings.ransac_s,
+          1e3 * estimate.timings.refinement_s, estimate.message.empty() ? "" : "; ",
+          estimate.message.c_str(), estimate.refinement.summary.BriefReport().c_str());
     }
   }
   if (FLAGS_print_trials > 0) std::printf("\n");
@@ -349,7 +348,7 @@ SweepResult RunSetting(const Setting& setting) {
       ++result.failures;
       continue;
     }
-    raw.Add(trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, estimate.initial));
+    raw.Add(trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, estimate.robust.pose));
     refined.Add(trigrav::ComputeThreeViewPoseErrors(scene.ground_truth, estimate.refined));
     refinement_ms.push_back(1e3 * estimate.timings.refinement_s);
   }
@@ -456,7 +455,7 @@ std::vector<trigrav::LevelErrors> RunSample20Chunk(const trigrav::PaperLevel& le
       }
       const trigrav::ThreeViewEstimate estimate =
           trigrav::InitializeAndRefine(observations, options);
-      errors[2 * s].Add(scene.ground_truth, estimate.success, estimate.initial);
+      errors[2 * s].Add(scene.ground_truth, estimate.success, estimate.robust.pose);
       errors[2 * s + 1].Add(scene.ground_truth, estimate.success && estimate.refinement_runs > 0,
                             estimate.refined);
     }

@@ -94,10 +94,9 @@ DEFINE_double(pixel_sigma_px, 0.5, "Pixel noise that weights the gravity prior a
 DEFINE_double(loss_px, 1.0, "Huber scale of the bundle adjustment's pixel residuals.");
 DEFINE_string(
     engine,
-    "ceres",
-    "Bundle-adjustment engine (ThreeViewBundleAdjustmentOptions::Engine, the same "
-    "optimum): ceres (the outputs in README.md were made with it), ceres_points_eliminated (the "
-    "library's default) or dedicated (trigrav's own solver, the fastest).");
+    trigrav::EngineName(trigrav::ThreeViewBundleAdjustmentOptions().engine),
+    "Bundle-adjustment engine (ThreeViewBundleAdjustmentOptions::Engine, the same optimum): "
+    "ceres_points_eliminated (the library's default) or ceres (a block per point).");
 DEFINE_int32(reclassification_rounds,
              1,
              "Refinement: re-classify the tracks against the refined pose and refine again, up to "

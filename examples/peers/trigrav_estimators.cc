@@ -44,7 +44,7 @@ EstimatorResult RefinedEstimate(const ThreeViewObservations& observations,
   result.message = estimate.message;
   result.pose = estimate.refined;
   result.inliers = estimate.inliers;
-  result.ransac = estimate.ransac;
+  result.ransac = estimate.robust.ransac;
   result.ransac.num_inliers = estimate.num_inliers;
   return result;
 }

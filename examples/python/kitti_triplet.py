@@ -157,9 +157,9 @@ def main():
 
     print(f"\n{'method':<34}{'view':>5}{'rotation (deg)':>16}{'translation (deg)':>19}"
           f"{'inliers':>9}")
-    errors = trigrav.compute_three_view_pose_errors(ground_truth, estimate.initial)
+    errors = trigrav.compute_three_view_pose_errors(ground_truth, estimate.robust.pose)
     refined = trigrav.compute_three_view_pose_errors(ground_truth, estimate.refined)
-    rows = [("trigrav 3pt RANSAC", errors, estimate.ransac.num_inliers),
+    rows = [("trigrav 3pt RANSAC", errors, estimate.robust.ransac.num_inliers),
             ("trigrav initialize_and_refine", refined, estimate.num_inliers)]
     for name, e, inliers in rows:
         for view in (0, 1):

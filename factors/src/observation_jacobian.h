@@ -3,8 +3,8 @@
 
 // The residual of one observation (trigrav/initializers/observation_residual.h) at a point given in
 // the observing camera's frame, with its derivative d r / d x_cam (2 x 3), for the analytic
-// factors and the dedicated engine (ba/derivations.md 13.1): closed form for pinhole cameras
-// and bearings, forward-mode automatic differentiation (Jets of 3, no allocation) for the
+// factors and EliminatedPointReprojectionError (ba/derivations.md 13.1): closed form for pinhole
+// cameras and bearings, forward-mode automatic differentiation (Jets of 3, no allocation) for the
 // distortion models. Each returns false where the residual functor does (the observation cannot
 // see the point) or where the result is not finite.
 //

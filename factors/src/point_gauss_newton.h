@@ -4,8 +4,8 @@
 // One triplet's point X (camera 1's frame) with the three cameras fixed: its robust cost
 // f = 1/2 sum_k rho(|r_k|^2) over the views k = 1, 2, 3, the Gauss-Newton system of f with the
 // losses as weights, and the minimisation of f over X by Gauss-Newton with step halving
-// (ba/derivations.md 15.1). The inner minimisation of EliminatedPointReprojectionError and the
-// point steps of the dedicated engine's warm start (section 13.6). Fixed-size, no allocation.
+// (ba/derivations.md 15.1): the inner minimisation of EliminatedPointReprojectionError.
+// Fixed-size, no allocation.
 //
 // The cameras: x_cam = rotation[k] (X - center[k]) (rotation[0] = I, center[0] = 0 for camera 1).
 // The observations: a callable observe(k, x_cam, &r, &d_r_d_x) with LinearizeObservation's

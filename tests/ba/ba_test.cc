@@ -79,7 +79,7 @@ RunErrors RunSynthetic(int num_problems,
     }
     EXPECT_TRUE(estimate.refined.IsFinite());
     const ThreeViewPoseErrors raw =
-        ComputeThreeViewPoseErrors(scene.ground_truth, estimate.initial);
+        ComputeThreeViewPoseErrors(scene.ground_truth, estimate.robust.pose);
     const ThreeViewPoseErrors refined =
         ComputeThreeViewPoseErrors(scene.ground_truth, estimate.refined);
     out.raw_rotation.push_back(raw.MaxRotationDeg());
@@ -244,8 +244,8 @@ TEST(InitializeAndRefineTest, RefineFalseKeepsTheInitialPose) {
   ASSERT_TRUE(estimate.success) << estimate.message;
   EXPECT_EQ(estimate.refinement_runs, 0);
   EXPECT_FALSE(estimate.refinement.summary.success);
-  EXPECT_EQ(estimate.refined.cam2_from_cam1.R, estimate.initial.cam2_from_cam1.R);
-  EXPECT_EQ(estimate.refined.cam3_from_cam1.t, estimate.initial.cam3_from_cam1.t);
+  EXPECT_EQ(estimate.refined.cam2_from_cam1.R, estimate.robust.pose.cam2_from_cam1.R);
+  EXPECT_EQ(estimate.refined.cam3_from_cam1.t, estimate.robust.pose.cam3_from_cam1.t);
 }
 
 // A triplet with ~300 inliers: noise-free, both rotation models converge to the truth.

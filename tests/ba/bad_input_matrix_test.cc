@@ -223,8 +223,8 @@ enum Ep : int {
   kBundleYawOnly,
   kBundleGravityPrior,
   kRefineOnly,  // RefineThreeViewPose on every triplet (yaw-only)
-  kRefine3ptDedicated,
-  kBundleDedicated,
+  kRefine3ptCeres,
+  kBundleCeres,
 };
 
 using EpSet = std::uint64_t;
@@ -243,8 +243,8 @@ const EpSet kMinimalSolvers = EpRange(k4ptAligned, kTrifocalLinear) & ~Eps({k4pt
 const EpSet kExactCountSolvers = EpRange(k3ptAligned, kEssential5pt);
 const EpSet kRobust = EpRange(kRobust3pt, kRobust8pt);
 const EpSet kRefine =
-    Eps({kRefine3ptYawOnly, kRefine5ptGravityPrior, kRefine3ptGravityPrior, kRefine3ptDedicated});
-const EpSet kBundle = Eps({kBundleYawOnly, kBundleGravityPrior, kRefineOnly, kBundleDedicated});
+    Eps({kRefine3ptYawOnly, kRefine5ptGravityPrior, kRefine3ptGravityPrior, kRefine3ptCeres});
+const EpSet kBundle = Eps({kBundleYawOnly, kBundleGravityPrior, kRefineOnly, kBundleCeres});
 
 struct EntryPoint {
   Ep id;
@@ -353,7 +353,7 @@ Result RunRefine(const Input& in) {
   options.bundle_adjustment = in.bundle;
   const ThreeViewEstimate estimate = InitializeAndRefine(in.observations, options);
   return ClassifyEstimate(in, estimate.success, estimate.message,
-                          {&estimate.initial, &estimate.refined}, estimate.refined);
+                          {&estimate.robust.pose, &estimate.refined}, estimate.refined);
 }
 
 Result RunBundle(const Input& in) {
@@ -506,21 +506,19 @@ std::vector<EntryPoint> EntryPoints() {
       [](Input* in) { in->bundle.rotation_model = RM::kGravityPrior; }, RunBundle);
   add(kRefineOnly, "RefineThreeViewPose (yaw-only)", 30, 3,
       kObservations | kGivenPose | kBundleOptions, nullptr, RunRefineOnly);
-  // The dedicated bundle-adjustment engine behind both kinds of entry point.
+  // The kCeres engine (a block per point) behind both kinds of entry point.
   add(
-      kRefine3ptDedicated, "InitializeAndRefine (3pt, yaw-only, dedicated engine)", 30, 3,
-      refine_reads,
+      kRefine3ptCeres, "InitializeAndRefine (3pt, yaw-only, kCeres engine)", 30, 3, refine_reads,
       [](Input* in) {
         in->solver = InitialSolver::kTrifocal3pt;
-        in->bundle.engine = ThreeViewBundleAdjustmentOptions::Engine::kDedicated;
+        in->bundle.engine = ThreeViewBundleAdjustmentOptions::Engine::kCeres;
       },
       RunRefine);
   add(
-      kBundleDedicated, "ThreeViewBundleAdjuster (gravity prior, dedicated engine)", 30, 3,
-      bundle_reads,
+      kBundleCeres, "ThreeViewBundleAdjuster (gravity prior, kCeres engine)", 30, 3, bundle_reads,
       [](Input* in) {
         in->bundle.rotation_model = RM::kGravityPrior;
-        in->bundle.engine = ThreeViewBundleAdjustmentOptions::Engine::kDedicated;
+        in->bundle.engine = ThreeViewBundleAdjustmentOptions::Engine::kCeres;
       },
       RunBundle);
   return eps;
@@ -872,7 +870,7 @@ void AddGeometryCases(std::vector<Case>* cases) {
   // Entry points that evaluate the pose handed in (the truth) rather than estimate one.
   const EpSet evaluators = Eps({kCombinePairs, kTriangulate, kReprojectionError}) | kBundle;
   const EpSet decoupled_3pt = Eps({k3ptAligned, k3ptGravity, kRobust3pt, kRefine3ptYawOnly,
-                                   kRefine3ptGravityPrior, kRefine3ptDedicated});
+                                   kRefine3ptGravityPrior, kRefine3ptCeres});
   add(degenerate, "duplicate triplet", Geometry::kDuplicateTriplet, kTruth,
       {{kMinimalSolvers, kNone}});
   add(degenerate, "all points identical", Geometry::kAllPointsIdentical, kNone,
@@ -894,7 +892,7 @@ void AddGeometryCases(std::vector<Case>* cases) {
   add(degenerate, "zero baseline, camera 3", Geometry::kZeroBaseline3, kDegenerate,
       {{kRobust | kRefine, kTruth | kNone},
        {Eps({kRobust3pt, kRefine3ptYawOnly, kRefine5ptGravityPrior, kRefine3ptGravityPrior,
-             kRefine3ptDedicated, kEssential5pt, kEssential8pt, kTriangulate, kReprojectionError}) |
+             kRefine3ptCeres, kEssential5pt, kEssential8pt, kTriangulate, kReprojectionError}) |
             kBundle,
         kTruth},
        {Eps({kCombinePairs}), kNone}});

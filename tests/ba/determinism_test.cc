@@ -97,11 +97,11 @@ bool SameRefinement(const ThreeViewRefinement& a, const ThreeViewRefinement& b) 
 
 // Everything of an initialise-and-refine estimate except the wall times.
 bool SameEstimate(const ThreeViewEstimate& a, const ThreeViewEstimate& b) {
-  return a.success == b.success && a.message == b.message && BitwiseEqual(a.initial, b.initial) &&
-         BitwiseEqual(a.refined, b.refined) && a.inliers == b.inliers &&
-         a.num_inliers == b.num_inliers && a.initial_inliers == b.initial_inliers &&
-         SameStatistics(a.ransac, b.ransac) && a.refinement_runs == b.refinement_runs &&
-         SameRefinement(a.refinement, b.refinement);
+  return a.success == b.success && a.message == b.message &&
+         BitwiseEqual(a.robust.pose, b.robust.pose) && BitwiseEqual(a.refined, b.refined) &&
+         a.inliers == b.inliers && a.num_inliers == b.num_inliers &&
+         a.robust.inliers == b.robust.inliers && SameStatistics(a.robust.ransac, b.robust.ransac) &&
+         a.refinement_runs == b.refinement_runs && SameRefinement(a.refinement, b.refinement);
 }
 
 class DeterminismEveryMethod : public ::testing::TestWithParam<InitialSolver> {};

@@ -1,5 +1,5 @@
 // Mistakes matrix: InitializeAndRefine at its defaults against each common input mistake of
-// trigrav/evaluation/input_mistakes.h (synthetic scenes of 600 triplets, 1 px noise, 10 %
+// tests/scenes/input_mistakes.h (synthetic scenes of 600 triplets, 1 px noise, 10 %
 // outliers, f = 1000 px), and against pure outliers. A mistake must give success == false with a
 // message naming its likely cause; correct input must still give the true pose. The figures per
 // mistake are in the README's robustness table (examples/experiments/verdict_matrix).
@@ -12,8 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "input_mistakes.h"
 #include "trigrav/ba/initialize_and_refine.h"
-#include "trigrav/evaluation/input_mistakes.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/synthetic_scene.h"
 
@@ -62,7 +62,7 @@ TEST(MistakesMatrix, CorrectInputGivesTheTruePose) {
         ComputeThreeViewPoseErrors(scenes[s].ground_truth, estimate.refined);
     EXPECT_LT(errors.MaxRotationDeg(), 0.2) << "scene " << s;
     EXPECT_LT(errors.MaxTranslationDeg(), 2.0) << "scene " << s;
-    EXPECT_FALSE(estimate.gravity.measured);  // no check after a success by default
+    EXPECT_FALSE(estimate.robust.gravity.measured);  // no check after a success by default
   }
 }
 
@@ -100,12 +100,12 @@ TEST(MistakesMatrix, FlippedGravityNamesTheCameraAndTheAngle) {
   for (int s = 0; s < kScenes; ++s) {
     const ThreeViewEstimate estimate =
         Estimate(WithMistake(scenes[s], InputMistake::kGravitySignCamera2), s);
-    ASSERT_TRUE(estimate.gravity.measured) << estimate.message;
-    EXPECT_EQ(estimate.gravity.inconsistent_camera, 2);
-    EXPECT_GT(estimate.gravity.pair_inconsistency_deg[0], 175.0);  // pair (1,2)
-    EXPECT_LT(estimate.gravity.pair_inconsistency_deg[1], 1.0);    // pair (1,3)
-    EXPECT_GT(estimate.gravity.pair_inconsistency_deg[2], 175.0);  // pair (2,3)
-    EXPECT_GT(estimate.gravity.num_inliers, 300);                  // of 540 true inliers
+    ASSERT_TRUE(estimate.robust.gravity.measured) << estimate.message;
+    EXPECT_EQ(estimate.robust.gravity.inconsistent_camera, 2);
+    EXPECT_GT(estimate.robust.gravity.pair_inconsistency_deg[0], 175.0);  // pair (1,2)
+    EXPECT_LT(estimate.robust.gravity.pair_inconsistency_deg[1], 1.0);    // pair (1,3)
+    EXPECT_GT(estimate.robust.gravity.pair_inconsistency_deg[2], 175.0);  // pair (2,3)
+    EXPECT_GT(estimate.robust.gravity.num_inliers, 300);                  // of 540 true inliers
   }
 }
 
@@ -120,9 +120,10 @@ TEST(MistakesMatrix, GravityCheckAfterSuccessKeepsCorrectInput) {
     const ThreeViewEstimate estimate =
         InitializeAndRefine(WithMistake(scenes[s], InputMistake::kNone), options);
     ASSERT_TRUE(estimate.success) << estimate.message;
-    if (!estimate.gravity.measured) continue;
-    for (const double angle : estimate.gravity.pair_inconsistency_deg) EXPECT_LT(angle, 2.8);
-    for (const double angle : estimate.gravity.rotation_disagreement_deg) EXPECT_LT(angle, 2.8);
+    if (!estimate.robust.gravity.measured) continue;
+    for (const double angle : estimate.robust.gravity.pair_inconsistency_deg) EXPECT_LT(angle, 2.8);
+    for (const double angle : estimate.robust.gravity.rotation_disagreement_deg)
+      EXPECT_LT(angle, 2.8);
   }
 }
 
@@ -171,9 +172,9 @@ TEST(MistakesMatrix, PureOutliersFailWithAClearMessage) {
   EXPECT_FALSE(estimate.success);
   EXPECT_TRUE(Mentions(estimate.message, "of 1000 triplets fit")) << estimate.message;
   EXPECT_TRUE(Mentions(estimate.message, "matches?")) << estimate.message;
-  EXPECT_FALSE(estimate.gravity.measured);  // no gravity-free model either
+  EXPECT_FALSE(estimate.robust.gravity.measured);  // no gravity-free model either
   // Stopped at the floor's sample count, not at max_iterations (log(1e-4) / log(1 - 0.25^3)).
-  EXPECT_EQ(estimate.ransac.iterations, 585);
+  EXPECT_EQ(estimate.robust.ransac.iterations, 585);
 }
 
 }  // namespace

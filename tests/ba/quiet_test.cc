@@ -131,7 +131,7 @@ TEST(QuietTest, ControlTheseTripletsPrintWithCeresDefaultRadius) {
     ThreeViewBundleAdjuster adjuster(
         scene.observations, ThreeViewBundleAdjustmentConfig::FromInlierMask(ransac.inliers),
         options.bundle_adjustment);
-    ASSERT_TRUE(adjuster.Build(ransac.initial)) << adjuster.message();
+    ASSERT_TRUE(adjuster.Build(ransac.robust.pose)) << adjuster.message();
     ceres::Solver::Summary summary;
     OutputCapture capture;
     ASSERT_TRUE(capture.ok());
@@ -159,13 +159,14 @@ TEST(QuietTest, LibraryCallsPrintNothing) {
     const ThreeViewEstimate estimate = InitializeAndRefine(scene.observations, options);
     calls.push_back("InitializeAndRefine: " + estimate.message);
     if (!estimate.success) continue;
-    const ThreeViewRefinement refinement = RefineThreeViewPose(
-        scene.observations, estimate.initial, estimate.initial_inliers, options.bundle_adjustment);
+    const ThreeViewRefinement refinement =
+        RefineThreeViewPose(scene.observations, estimate.robust.pose, estimate.robust.inliers,
+                            options.bundle_adjustment);
     calls.push_back("RefineThreeViewPose: " + refinement.summary.message);
     ThreeViewBundleAdjuster adjuster(
         scene.observations, ThreeViewBundleAdjustmentConfig::FromInlierMask(estimate.inliers),
         options.bundle_adjustment);
-    if (adjuster.Build(estimate.initial)) calls.push_back("Solve: " + adjuster.Solve().message);
+    if (adjuster.Build(estimate.robust.pose)) calls.push_back("Solve: " + adjuster.Solve().message);
   }
   // A normal call: the synthetic default of initialize_and_refine_synthetic.
   std::mt19937_64 rng(1);

@@ -54,7 +54,7 @@ TEST(StopRequestTest, AStopDuringTheVerdictIsNoSuccess) {
 
 TEST(StopRequestTest, EveryRefinementEngineStopsAndInitializeAndRefineFails) {
   const ThreeViewObservations observations = Scene();
-  for (const Engine engine : {Engine::kCeres, Engine::kDedicated, Engine::kCeresPointsEliminated}) {
+  for (const Engine engine : {Engine::kCeres, Engine::kCeresPointsEliminated}) {
     InitializeAndRefineOptions options;
     options.bundle_adjustment.engine = engine;
     ASSERT_TRUE(InitializeAndRefine(observations, options).success);

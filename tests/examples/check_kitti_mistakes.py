@@ -19,7 +19,6 @@ WRONG_DEG = 5.0
 def run(exe, kitti_dir, work_dir, sequence, name, flags):
     out = os.path.join(work_dir, f"{sequence}_{name}")
     subprocess.run([exe, f"--kitti_dir={kitti_dir}", f"--sequence={sequence}", "--methods=3pt",
-                    "--engine=dedicated",
                     "--threads=2", f"--output_dir={out}",
                     f"--cache_dir={os.path.join(work_dir, 'cache_' + sequence)}"] + flags,
                    check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)

@@ -57,7 +57,7 @@ trigrav_add_bad_flag_test(triplet_initializer_unknown_rotation_model triplet_ini
 trigrav_add_bad_flag_test(triplet_initializer_zero_gravity_sigma triplet_initializer
   "--gravity_sigma_deg ${positive}" ${initializer_ok} --gravity_sigma_deg=0)
 trigrav_add_bad_flag_test(triplet_initializer_unknown_engine triplet_initializer
-  "--engine must be ceres, dedicated or ceres_points_eliminated" ${initializer_ok} --engine=gpu)
+  "--engine must be ceres or ceres_points_eliminated" ${initializer_ok} --engine=gpu)
 trigrav_add_bad_flag_test(triplet_initializer_zero_threads triplet_initializer
   "--threads must be in \\[1, 256\\]" ${initializer_ok} --threads=0)
 trigrav_add_bad_flag_test(triplet_initializer_unknown_solver triplet_initializer

@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
   options.bundle_adjustment.compute_covariance = true;
   const trigrav::ThreeViewEstimate estimate = trigrav::InitializeAndRefine(observations, options);
   std::printf("ir_success %d\nir_num_inliers %d\n", estimate.success ? 1 : 0, estimate.num_inliers);
-  PrintPose("ir_initial", estimate.initial);
+  PrintPose("ir_initial", estimate.robust.pose);
   PrintPose("ir_refined", estimate.refined);
   PrintMask("ir_inliers", estimate.inliers);
   PrintValues("ir_covariance", estimate.refinement.covariance.data(),

@@ -10,7 +10,7 @@ def assert_same_estimate(a, b):
     assert a.success == b.success and a.message == b.message
     assert a.num_inliers == b.num_inliers
     np.testing.assert_array_equal(a.inliers, b.inliers)
-    for pose_a, pose_b in ((a.refined, b.refined), (a.initial, b.initial)):
+    for pose_a, pose_b in ((a.refined, b.refined), (a.robust.pose, b.robust.pose)):
         for cam_a, cam_b in ((pose_a.cam2_from_cam1, pose_b.cam2_from_cam1),
                              (pose_a.cam3_from_cam1, pose_b.cam3_from_cam1)):
             assert cam_a.R.tobytes() == cam_b.R.tobytes()

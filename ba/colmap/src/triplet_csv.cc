@@ -124,16 +124,16 @@ std::string FormatTripletCsv(const std::vector<TripletResult>& results,
     for (const DatabaseImage& image : result.images) out << Quoted(image.name) << ',';
     for (const DatabaseImage& image : result.images) out << image.image_id << ',';
     out << result.num_tracks << ',' << TripletVerdict(result) << ',' << estimate.success << ','
-        << estimate.num_inliers << ',' << estimate.ransac.num_inliers << ','
-        << estimate.ransac.iterations;
+        << estimate.num_inliers << ',' << estimate.robust.ransac.num_inliers << ','
+        << estimate.robust.ransac.iterations;
     WritePose(estimate.refined.cam2_from_cam1, &out);
     WritePose(estimate.refined.cam3_from_cam1, &out);
     const double c2 = estimate.refined.cam2_from_cam1.Center().norm();
     out << ',' << (c2 > 0.0 ? estimate.refined.cam3_from_cam1.Center().norm() / c2 : 0.0) << ','
         << estimate.refinement.summary.success << ',' << estimate.refinement.residual_rms << ','
-        << estimate.gravity.measured;
-    for (const double angle : estimate.gravity.pair_inconsistency_deg) out << ',' << angle;
-    out << ',' << estimate.gravity.inconsistent_camera;
+        << estimate.robust.gravity.measured;
+    for (const double angle : estimate.robust.gravity.pair_inconsistency_deg) out << ',' << angle;
+    out << ',' << estimate.robust.gravity.inconsistent_camera;
     WriteCovariance(estimate.refinement.covariance, layout, &out);
     out << ',' << Quoted(estimate.message) << '\n';
   }

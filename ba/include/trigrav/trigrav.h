@@ -23,7 +23,6 @@
 #include "trigrav/initializers/two_view_to_three_view.h"
 
 // trigrav::evaluation: synthetic scenes, error metrics, statistics, trajectories.
-#include "trigrav/evaluation/pooled_errors.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"
@@ -34,6 +33,7 @@
 #include "trigrav/factors/reprojection_factors.h"
 
 // trigrav::ba: bundle adjustment (three views, N views), refine-only and initialise-then-refine.
+#include "trigrav/ba/bundle_adjustment_options.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/ba/nview_bundle_adjustment.h"
 #include "trigrav/ba/refine_three_view_pose.h"

@@ -56,23 +56,20 @@ struct ThreeViewEstimate {
   bool success = false;
   std::string message;  // why not, when !success; a note when the refinement fell back
   FailureCause cause = FailureCause::kNone;  // why not, for a pipeline (robust_three_view.h)
-  // The RANSAC winner: pose, inliers and statistics (ransac.num_inliers inliers).
-  ThreeViewPose initial;
-  std::vector<char> initial_inliers;
-  RansacStatistics ransac;
-  // What the images say about the gravity (robust_three_view.h), also when !success.
-  GravityConsistency gravity;
-  // How much the RANSAC winner's consensus says (robust_three_view.h), set when RANSAC succeeded.
-  ConsensusEvidence evidence;
+  // The RANSAC stage as EstimateThreeViewPoseRobust returned it (robust_three_view.h): the RANSAC
+  // winner's pose and inliers, the RANSAC statistics, what the images say about the gravity (also
+  // when !success) and the consensus evidence; its success, message and cause are the verdict on
+  // the RANSAC pose, the ones above the whole call's.
+  RobustThreeViewEstimate robust;
   // The answer: the refined pose, or the initial one when refine is false or the refinement failed.
   ThreeViewPose refined;
   std::vector<char> inliers;  // per triplet: inliers of `refined` (those the last refinement used)
   int num_inliers = 0;
   // The bundle adjustment that produced `refined` (the last successful run): the refined points,
   // per-triplet residual norms, residual RMS, relative scale and, with
-  // bundle_adjustment.compute_covariance, the pose covariance (computed in every run, about 1-2 ms
-  // each at 300-650 inliers; the last one is kept). When none succeeded, the first run, its
-  // summary.success false and the reason in its summary.message.
+  // bundle_adjustment.compute_covariance, the pose covariance (computed in every run, the last one
+  // kept; its cost: examples/experiments/README.md, covariance_calibration). When none succeeded,
+  // the first run, its summary.success false and the reason in its summary.message.
   ThreeViewRefinement refinement;
   int refinement_runs = 0;  // successful bundle adjustments (1 + re-classification rounds used)
   ThreeViewEstimateTimings timings;

@@ -46,8 +46,7 @@
 //   summary = adjuster.Solve();
 //   refined = adjuster.CurrentReconstruction();
 //
-// Cost: the figures above NViewBundleAdjustmentOptions::linear_solver_type (12-17 s of CPU for 300
-// images and 130k observations).
+// Cost: examples/benchmarks/README.md (nview_bundle_adjustment_benchmark).
 
 #include <ceres/problem.h>
 #include <ceres/solver.h>
@@ -114,46 +113,31 @@ struct NViewBundleAdjustmentConfig {
   void Check(const NViewReconstruction& reconstruction) const;
 };
 
-struct NViewBundleAdjustmentOptions {
-  using RotationModel = ThreeViewBundleAdjustmentOptions::RotationModel;
-  using LossType = ThreeViewBundleAdjustmentOptions::LossType;
+// The N-view adjuster's options: the shared ones (bundle_adjustment_options.h) with these
+// defaults.
+//  - gravity_sigma_deg = 0.1: a good IMU's tilt noise.
+//  - compute_covariance: NViewBundleAdjustmentSummary::covariances (ba/derivations.md section
+//    14.3: the points eliminated by blocks, the dense reduced camera matrix inverted by Cholesky,
+//    O((4 or 6 N)^3)).
+//  - max_num_iterations = 100, tolerances 1e-6 (function), 1e-10 (gradient), 1e-8 (parameter):
+//    a whole model converges in tens of iterations (examples/benchmarks/README.md).
+//  - linear_solver_type = SPARSE_SCHUR (SuiteSparse): the fastest of the Schur solvers on a
+//    driving sequence of 300 images (examples/benchmarks/README.md,
+//    nview_bundle_adjustment_benchmark); ITERATIVE_SCHUR gets the SCHUR_JACOBI preconditioner.
+//  - stop_requested is called after each iteration.
+struct NViewBundleAdjustmentOptions : BundleAdjustmentOptions {
+  NViewBundleAdjustmentOptions()
+      : BundleAdjustmentOptions(/*gravity_sigma_deg=*/0.1,
+                                /*max_num_iterations=*/100,
+                                ceres::SPARSE_SCHUR,
+                                /*function_tolerance=*/1e-6,
+                                /*gradient_tolerance=*/1e-10,
+                                /*parameter_tolerance=*/1e-8) {}
 
-  RotationModel rotation_model = RotationModel::kYawOnly;
-  LossType loss = LossType::kHuber;
-  double loss_scale_px = 2.0;  // Huber / Cauchy scale on the pixel residuals
-  // Pixel noise assumed by the gravity prior's weight and by the covariance's scale.
-  double pixel_sigma_px = 1.0;
-  double gravity_sigma_deg = 0.1;  // IMU angular sigma (kGravityPrior)
-  // Fill NViewBundleAdjustmentSummary::covariances (ba/derivations.md section 14.3: the points
-  // eliminated by blocks, the dense reduced camera matrix inverted by Cholesky, O((4 or 6 N)^3)).
-  bool compute_covariance = false;
-
-  int max_num_iterations = 100;
-  // Ceres' threads, any number >= 1: more than std::thread::hardware_concurrency() run as that
-  // many (Ceres' own bound, without the warning Ceres would print).
-  int num_threads = 1;
-  // SPARSE_SCHUR (SuiteSparse) is the fastest of the Schur solvers on a driving sequence: CPU time
-  // of one RefineWithGravity call at 300 images, 30000 points, 129979 observations (tracks of 2-8
-  // consecutive images), from 1 deg / 5 % perturbed poses and 2 % perturbed points, one thread,
-  // median of 3 interleaved runs (range) on a shared, loaded 2-core VM:
-  //   yaw-only       SPARSE_SCHUR 12.0 s (9.8-12.0), DENSE_SCHUR 14.1 s (12.4-14.1), 40 iterations
-  //   gravity prior  SPARSE_SCHUR 17.2 s (16.8-17.6), DENSE_SCHUR 30.5 s (26.8-30.8), 55 iterations
-  // ITERATIVE_SCHUR (SCHUR_JACOBI) took 6.7 and 8.9 times SPARSE_SCHUR's wall time in one run. The
-  // covariances (compute_covariance) add 0.9 s (yaw-only) and 1.8-2.2 s (gravity prior) of wall
-  // time. Command: build/examples/benchmarks/nview_bundle_adjustment_benchmark 300 30000 3 1
-  // (iterative=1 as a fifth argument adds ITERATIVE_SCHUR).
-  ceres::LinearSolverType linear_solver_type = ceres::SPARSE_SCHUR;
-  double function_tolerance = 1e-6;
-  double gradient_tolerance = 1e-10;
-  double parameter_tolerance = 1e-8;
-
-  // Throws std::invalid_argument naming the first bad field (non-positive or non-finite scales and
-  // sigmas, negative counts or tolerances, enum values out of range).
+  // Throws std::invalid_argument naming the first bad field.
   void Check() const;
-  // The ceres::Solver::Options of NViewBundleAdjuster::Solve(): these fields (preconditioner
-  // SCHUR_JACOBI with ITERATIVE_SCHUR, Ceres' default otherwise), silent (logging_type SILENT, no
-  // progress on stdout, trust region radius at most 1e7 as the three-view adjuster's). Solve()
-  // fails with Ceres' message when Solver::Options::IsValid rejects them.
+  // The shared Ceres options; SCHUR_JACOBI with ITERATIVE_SCHUR. Solve() fails with Ceres' message
+  // when Solver::Options::IsValid rejects them.
   ceres::Solver::Options CeresSolverOptions() const;
 };
 
@@ -183,8 +167,8 @@ struct NViewBundleAdjustmentSummary : CeresSolveReport {
   // the scale image's fixed centre coordinate (a null direction of its C block), constant images
   // and images without observations.
   std::vector<Eigen::MatrixXd> covariances;
-  double solve_time_s = 0.0;
-  double covariance_time_s = 0.0;
+  double solve_s = 0.0;       // wall-clock seconds of ceres::Solve
+  double covariance_s = 0.0;  // wall-clock seconds of the covariances
 };
 
 // Owns the ceres::Problem of an N-view refinement.

@@ -39,9 +39,9 @@ struct ThreeViewRefinement {
   // reason in summary.message, summary.success stays true). Never NaN.
   Eigen::MatrixXd covariance;
   ThreeViewBundleAdjustmentSummary summary;  // success, message, costs, the full Ceres summary
-  // Wall-clock seconds of the stages: adjuster construction and Build(), Solve(), the covariance.
+  // Wall-clock seconds of the stages around the solve (summary.solve_s): adjuster construction
+  // and Build(), the covariance.
   double build_s = 0.0;
-  double solve_s = 0.0;
   double covariance_s = 0.0;
 };
 

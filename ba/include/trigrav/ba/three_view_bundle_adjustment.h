@@ -10,11 +10,11 @@
 #include <ceres/types.h>
 
 #include <Eigen/Core>
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "trigrav/ba/bundle_adjustment_options.h"
 #include "trigrav/ba/ceres_solve_report.h"
 #include "trigrav/initializers/camera_pose.h"
 #include "trigrav/initializers/three_view_error.h"
@@ -36,112 +36,85 @@ struct ThreeViewBundleAdjustmentConfig {
   static ThreeViewBundleAdjustmentConfig FromInlierMask(const std::vector<char>& inliers);
 };
 
-struct ThreeViewBundleAdjustmentOptions {
-  enum class RotationModel {
-    // R_k = A_k^T R_y(yaw_k) A_1: pitch and roll exactly as the measured gravity says; one angle
-    // per camera with YawManifold.
-    kYawOnly,
-    // R_k free (quaternion on ceres::QuaternionManifold) with a GravityPriorError per camera 2, 3
-    // weighted by (observation sigma / gravity_sigma)^2: pitch and roll may move when the IMU is
-    // off.
-    kGravityPrior,
-  };
-  enum class LossType { kNone, kHuber, kCauchy };
-  // Who minimises the problem. All three reach the same optimum (tests/ba/dedicated_engine_test.cc:
+// The three-view adjuster's options: the shared ones (bundle_adjustment_options.h) with these
+// defaults, the engine, and the loss and noise of bearing observations.
+//  - gravity_sigma_deg = 0.5: a consumer IMU's tilt noise, so that the gravity-prior model lets the
+//    images correct a tilt the IMU got wrong (the yaw-only model takes the tilt as exact).
+//  - loss_scale_px = 2 (Huber): at the RANSAC threshold Huber only guards against a stray inlier;
+//    at 1 px with 1 px noise it triples Ceres' iterations for no accuracy.
+//  - max_num_iterations = 50, far above the few iterations a refinement takes
+//    (examples/benchmarks/README.md); tolerances 1e-8 (function), 1e-10 (gradient, parameter):
+//    tight because iterations are few, and tight enough that both engines stop at the same
+//    optimum (tests/ba/engine_agreement_test.cc); DENSE_SCHUR for kCeres: its points eliminated,
+//    a dense 7 x 7 (11 x 11) camera system.
+//  - compute_covariance: the refined pose's covariance (ThreeViewRefinement::covariance,
+//    three_view_covariance.h, ba/derivations.md section 12), scaled by ObservationSigma()^2 (and
+//    gravity_sigma_deg^2 through the prior's weight); its cost is measured in
+//    examples/experiments/README.md (covariance_calibration). InitializeAndRefine computes it in
+//    every refinement run.
+//  - stop_requested is called after each iteration of either engine.
+struct ThreeViewBundleAdjustmentOptions : BundleAdjustmentOptions {
+  // Which Ceres problem is solved. Both reach the same optimum (tests/ba/engine_agreement_test.cc:
   // final costs equal to 1e-8 relative; with Cauchy's loss, whose cost can have several minima,
-  // kCeresPointsEliminated may stop in another, never a worse one on those tests) with Ceres'
-  // trust-region rules and the tolerances and iteration cap of CeresSolverOptions().
+  // kCeresPointsEliminated may stop in another, never a worse one on those tests) with the
+  // tolerances and iteration cap of CeresSolverOptions().
   //  - kCeresPointsEliminated (default): ceres::Solve on a problem of the pose blocks alone, one
   //    EliminatedPointReprojectionError per point (variable projection, ba/derivations.md section
   //    15): usually fewer iterations than kCeres, a 7 x 7 (11 x 11) dense system
-  //    (DENSE_NORMAL_CHOLESKY, whatever linear_solver_type says). It solves problem() as kCeres
-  //    instead when problem() was asked for after Build() (so that factors, constant blocks or
-  //    bounds a caller put there take part) and with Config::constant_points (no point to
-  //    eliminate).
+  //    (DENSE_NORMAL_CHOLESKY, whatever linear_solver_type says); about half kCeres' time
+  //    (examples/benchmarks/README.md). With Config::constant_points (no point to eliminate), or
+  //    once the caller has asked for problem() (so that factors, constant blocks or bounds put
+  //    there take part), Solve() solves problem() as kCeres: the summary's `engine` says which
+  //    engine solved.
   //  - kCeres: ceres::Solve on problem(), one factor per observation and a block per point
   //    (DENSE_SCHUR by default); factors a caller added to problem() take part.
-  //  - kDedicated: trigrav's own Levenberg-Marquardt on problem()'s cost (ba/derivations.md section
-  //    13): each point's 3 x 3 block eliminated, a fixed-size 7 x 7 (11 x 11) reduced system, no
-  //    ceres::Problem built, no allocation per iteration; the fastest
-  //    (examples/benchmarks/README.md). Its per-point storage (1.2-1.4 kB per point) is kept for
-  //    the calling thread's next solve of the same kind (residual type and rotation model), up to
-  //    8,192 points, until the thread exits. When Build() was given known points it departs from
-  //    Ceres' rules (section 13.6): it first moves the triangulated points to their optimum for
-  //    the starting cameras, and at the function tolerance keeps the last candidate if it would
-  //    be accepted. Uses neither linear_solver_type nor num_threads, and
-  //    ignores factors added to problem().
-  enum class Engine { kCeres, kDedicated, kCeresPointsEliminated };
+  enum class Engine { kCeres, kCeresPointsEliminated };
 
   Engine engine = Engine::kCeresPointsEliminated;
-  RotationModel rotation_model = RotationModel::kYawOnly;
-  LossType loss = LossType::kHuber;
-  // Huber / Cauchy scale on the pixel residuals. At the RANSAC threshold (2 px) Huber only guards
-  // against a stray inlier; at 1 px with 1 px noise it triples Ceres' iterations for no accuracy.
-  double loss_scale_px = 2.0;
-  double pixel_sigma_px = 1.0;  // pixel noise assumed when weighting the gravity prior
-  // The same two for bearing observations, in degrees (observation_residual.h); the defaults are
-  // the pixel ones at a focal length of 1150 px.
+  // loss_scale_px and pixel_sigma_px for bearing observations, in degrees
+  // (observation_residual.h); the defaults are the pixel ones at a focal length of 1150 px.
   double loss_scale_deg = 0.1;
   double bearing_sigma_deg = 0.05;
-  double gravity_sigma_deg = 0.5;  // IMU angular sigma (gravity-prior model)
-  // Also compute the covariance of the refined pose (ThreeViewRefinement::covariance;
-  // three_view_covariance.h, ba/derivations.md section 12), scaled by ObservationSigma()^2 (and
-  // gravity_sigma_deg^2 through the prior's weight). Cost per refinement (one thread, median;
-  // examples/experiments/covariance_calibration): 0.9 ms at 300 points, 1.9 ms at 650 (yaw-only;
-  // 1.1 and 2.4 ms gravity-prior), 8-9 % of a kCeres refinement; ceres::Covariance (SPARSE_QR) on
-  // the same problem takes 2.5-2.7 and 5.3-6.3 ms. kCeresPointsEliminated builds problem() for it
-  // first. InitializeAndRefine computes it in every refinement run.
-  bool compute_covariance = false;
-  int max_num_iterations = 50;
-  // Ceres' threads, any number >= 1: more than std::thread::hardware_concurrency() run as that
-  // many (Ceres' own bound, without the warning Ceres would print).
-  int num_threads = 1;
-  ceres::LinearSolverType linear_solver_type = ceres::DENSE_SCHUR;
-  double function_tolerance = 1e-8;
-  double gradient_tolerance = 1e-10;
-  double parameter_tolerance = 1e-10;
-  // When set, called after each iteration (every engine, from the thread that calls Solve()); true
-  // ends the solve as a failure ("stopped on request"), the pose and points restored. For a caller
-  // that must cancel a long solve from another thread. It must be cheap and must not throw.
-  std::function<bool()> stop_requested;
 
-  // Throws std::invalid_argument naming the first bad field (non-positive or non-finite scales and
-  // sigmas, negative counts or tolerances, NaN tolerances, enum values out of range: engine,
-  // rotation_model, loss, linear_solver_type).
+  ThreeViewBundleAdjustmentOptions()
+      : BundleAdjustmentOptions(/*gravity_sigma_deg=*/0.5,
+                                /*max_num_iterations=*/50,
+                                ceres::DENSE_SCHUR,
+                                /*function_tolerance=*/1e-8,
+                                /*gradient_tolerance=*/1e-10,
+                                /*parameter_tolerance=*/1e-10) {}
+
+  // Throws std::invalid_argument naming the first bad field (the shared ones, then engine,
+  // loss_scale_deg, bearing_sigma_deg).
   void Check() const;
   // The loss scale and the observation sigma that apply to the observations: the *_deg fields for
   // bearings, else the *_px ones.
   double LossScale(const ThreeViewObservations& observations) const;
-  // The ceres::Solver::Options of Solve(): linear solver, iterations, threads and tolerances from
-  // these fields; silent, with the trust region radius capped at 1e7 (the cap keeps Ceres' dense
-  // Cholesky from failing, and printing, on distant points) and starting there.
-  ceres::Solver::Options CeresSolverOptions() const;
   double ObservationSigma(const ThreeViewObservations& observations) const;
+  // The shared Ceres options, the trust region starting at its cap.
+  ceres::Solver::Options CeresSolverOptions() const;
 };
 
-// The engines' names for command lines and bindings: "ceres", "dedicated",
-// "ceres_points_eliminated".
+// The engines' names for command lines and bindings: "ceres", "ceres_points_eliminated".
 const char* EngineName(ThreeViewBundleAdjustmentOptions::Engine engine);
 // Inverse of EngineName; false (and *engine untouched) for an unknown name.
 bool ParseEngine(const std::string& name, ThreeViewBundleAdjustmentOptions::Engine* engine);
-// "ceres, dedicated or ceres_points_eliminated", for a flag's help and error messages.
+// "ceres or ceres_points_eliminated", for a flag's help and error messages.
 std::string EngineNames();
 
 // The one refinement summary: what a bundle adjustment did (the refined pose and points are held by
-// the adjuster, and returned by RefineThreeViewPose). Of ceres_summary (CeresSolveReport) the
-// dedicated engine fills, with Ceres' meaning: initial_cost, final_cost, fixed_cost,
-// num_successful_steps (iteration 0 included, as Ceres), num_unsuccessful_steps, termination_type,
-// message, iterations (iteration, cost, cost_change, gradient_max_norm, step_norm,
-// relative_decrease, trust_region_radius, step_is_valid, step_is_successful), minimizer and linear
-// solver types, problem sizes (num_parameter_blocks, num_parameters, num_effective_parameters,
-// num_residual_blocks, num_residuals) and total_time_in_seconds; the rest keep their defaults.
+// the adjuster, and returned by RefineThreeViewPose), Ceres' report in ceres_summary.
 struct ThreeViewBundleAdjustmentSummary : CeresSolveReport {
   bool success = false;  // the engine ran and returned a usable (finite) solution
   // Why not, when !success; when success, empty or a note (e.g. why the covariance is empty).
   std::string message;
+  // The engine that solved: options().engine, or kCeres where kCeresPointsEliminated solves
+  // problem() (ThreeViewBundleAdjustmentOptions::Engine).
+  ThreeViewBundleAdjustmentOptions::Engine engine =
+      ThreeViewBundleAdjustmentOptions::Engine::kCeresPointsEliminated;
   int num_points = 0;  // triplets in the problem
   int num_residual_blocks = 0;
-  double solve_time_s = 0.0;
+  double solve_s = 0.0;  // wall-clock seconds of ceres::Solve
 };
 
 // Owns the ceres::Problem of a three-view refinement. Usage:
@@ -185,8 +158,8 @@ class ThreeViewBundleAdjuster {
   bool Build(const ThreeViewPose& initial,
              const std::vector<int>& known_triplets,
              const std::vector<Eigen::Vector3d>& known_points);
-  // Runs the engine of options().engine (Ceres, or the dedicated solver). Requires a successful
-  // Build(). On failure the parameters are restored.
+  // Solves with the engine of options().engine (see Engine for when kCeresPointsEliminated solves
+  // problem() instead). Requires a successful Build(). On failure the parameters are restored.
   ThreeViewBundleAdjustmentSummary Solve();
 
   const std::string& message() const { return message_; }
@@ -195,11 +168,10 @@ class ThreeViewBundleAdjuster {
   const ThreeViewBundleAdjustmentOptions& options() const { return options_; }
   const ThreeViewBundleAdjustmentConfig& config() const { return config_; }
   const ThreeViewObservations& observations() const { return observations_; }
-  // The Ceres engine's problem and its parameter blocks, valid after a successful Build(), for a
+  // The kCeres engine's problem and its parameter blocks, valid after a successful Build(), for a
   // caller who adds factors of their own or runs ceres::Covariance on it (nullptr before). With
-  // Engine::kDedicated or kCeresPointsEliminated it is built on the first call, over the same
-  // parameter blocks; kDedicated's Solve() does not use it (factors added to it are ignored by
-  // that engine), kCeresPointsEliminated's then solves it as kCeres. Camera 1 is not in the
+  // kCeresPointsEliminated it is built on the first call, over the same parameter blocks, and
+  // Solve() then solves it as kCeres (the summary's engine says so). Camera 1 is not in the
   // problem; for view 2 or 3 (std::invalid_argument otherwise):
   //  - RotationBlock(view): kYawOnly: the yaw (1 number, YawManifold; R = A_k^T R_y(yaw) A_1);
   //    kGravityPrior: the rotation cam_from_cam1 as a quaternion [w x y z] (4,

@@ -62,9 +62,8 @@ Eigen::VectorXd ThreeViewPoseDifference(ThreeViewBundleAdjustmentOptions::Rotati
 // (pixels, degrees for bearings); ThreeViewBundleAdjustmentOptions::ObservationSigma gives the
 // assumed one. Returns false with *message (covariance cleared) when the adjuster is not built, the
 // Jacobian cannot be evaluated or the information matrix is rank-deficient (its smallest
-// eigenvalue below 1e-12 of its largest). Prints nothing; allocates O(points) once. With
-// Engine::kDedicated the blocks of J^T J come from that engine's own linearisation (the same
-// Jacobian through the same losses, ba/derivations.md section 13), and no ceres::Problem is built.
+// eigenvalue below 1e-12 of its largest). Prints nothing; allocates O(points) once. The blocks of
+// J^T J come from problem() (ceres::Problem::Evaluate), which is built if it was not.
 bool ComputeThreeViewPoseCovariance(ThreeViewBundleAdjuster* adjuster,
                                     double observation_sigma,
                                     Eigen::MatrixXd* covariance,

@@ -1,7 +1,8 @@
-// The dedicated bundle-adjustment engine (ThreeViewBundleAdjustmentOptions::Engine::kDedicated),
-// and the Ceres engine with the points eliminated (kCeresPointsEliminated), against the Ceres
-// engine on the same problems: same final cost, pose and covariance; the same
-// failures; warm-started second refinements (RefineThreeViewPose with a previous refinement).
+// The Ceres engine with the points eliminated (ThreeViewBundleAdjustmentOptions::Engine::
+// kCeresPointsEliminated) against the plain Ceres engine (kCeres) on the same problems: same final
+// cost, pose and covariance; the same failures; warm-started second refinements
+// (RefineThreeViewPose with a previous refinement); problem() solved as kCeres, and said so, once
+// a caller asked for it.
 #include <ceres/autodiff_cost_function.h>
 #include <gtest/gtest.h>
 
@@ -181,51 +182,10 @@ void ForEveryProblemKind(const Test& test) {
   }
 }
 
-// Every rotation model, every camera model (and bearings), every loss, two random problems each:
-// the final costs agree to 1e-8 relative, the poses to 1e-6, and the engines take about as many
-// steps.
-TEST(DedicatedEngineTest, ReachesTheCeresOptimumOnRandomProblems) {
-  std::mt19937_64 rng(17);
-  int cases = 0;
-  ForEveryProblemKind([&](RotationModel model, bool bearings, CameraModel camera, LossType loss) {
-    for (int trial = 0; trial < 2; ++trial) {
-      SCOPED_TRACE(CaseName(model, bearings, camera, loss) + " trial " + std::to_string(trial));
-      SyntheticScene scene;
-      const ThreeViewObservations observations = SceneObservations(camera, bearings, &rng, &scene);
-      const ThreeViewPose initial = Perturbed(scene.ground_truth, &rng);
-      Options options = CeresOptions(model, loss);
-      // Without a robust loss, the inliers only (with the outliers the problem takes more than
-      // 50 iterations to crawl to its optimum).
-      const ThreeViewBundleAdjustmentConfig config =
-          loss == LossType::kNone ? ThreeViewBundleAdjustmentConfig::FromInlierMask(scene.is_inlier)
-                                  : ThreeViewBundleAdjustmentConfig();
-      const Solved ceres = BuildAndSolve(observations, initial, options, config);
-      options.engine = Engine::kDedicated;
-      const Solved dedicated = BuildAndSolve(observations, initial, options, config);
-      ASSERT_TRUE(ceres.summary.success) << ceres.summary.message;
-      ASSERT_TRUE(dedicated.summary.success) << dedicated.summary.message;
-      EXPECT_NEAR(dedicated.summary.InitialCost(), ceres.summary.InitialCost(),
-                  1e-12 * ceres.summary.InitialCost());
-      EXPECT_NEAR(dedicated.summary.FinalCost(), ceres.summary.FinalCost(),
-                  1e-8 * ceres.summary.FinalCost());
-      EXPECT_LT(dedicated.summary.FinalCost(), 0.5 * dedicated.summary.InitialCost());
-      EXPECT_LT(PoseDistance(dedicated.pose, ceres.pose), 1e-6);
-      EXPECT_NEAR(dedicated.summary.Iterations(), ceres.summary.Iterations(), 2);
-      EXPECT_EQ(dedicated.summary.ceres_summary.termination_type,
-                ceres.summary.ceres_summary.termination_type)
-          << dedicated.summary.BriefReport() << "\n"
-          << ceres.summary.BriefReport();
-      EXPECT_EQ(dedicated.summary.num_residual_blocks, ceres.summary.num_residual_blocks);
-      ++cases;
-    }
-  });
-  EXPECT_EQ(cases, 2 * 7 * 3 * 2);
-}
-
 // Engine::kCeresPointsEliminated (variable projection) against Engine::kCeres, on every rotation
 // model, camera model (and bearings) and loss, on the inliers: the same optimum, poses to 1e-6 and
 // points to 1e-6 of their distance.
-TEST(DedicatedEngineTest, PointsEliminatedEngineReachesTheCeresOptimum) {
+TEST(EngineAgreementTest, PointsEliminatedEngineReachesTheCeresOptimum) {
   std::mt19937_64 rng(29);
   int cases = 0;
   ForEveryProblemKind([&](RotationModel model, bool bearings, CameraModel camera, LossType loss) {
@@ -281,7 +241,7 @@ struct CenterPrior {
 // kCeresPointsEliminated solves problem() as kCeres when there is nothing to eliminate (constant
 // points) and when a caller asked for problem() (their factors would be ignored otherwise): a
 // caller's prior on C3 moves the result as it does with kCeres.
-TEST(DedicatedEngineTest, PointsEliminatedEngineSolvesProblemWhenAskedForIt) {
+TEST(EngineAgreementTest, PointsEliminatedEngineSolvesProblemWhenAskedForIt) {
   std::mt19937_64 rng(31);
   SyntheticScene scene;
   const ThreeViewObservations observations =
@@ -295,6 +255,7 @@ TEST(DedicatedEngineTest, PointsEliminatedEngineSolvesProblemWhenAskedForIt) {
   options.engine = Engine::kCeresPointsEliminated;
   const Solved eliminated = BuildAndSolve(observations, initial, options, constant);
   ASSERT_TRUE(eliminated.summary.success) << eliminated.summary.message;
+  EXPECT_EQ(eliminated.summary.engine, Engine::kCeres);  // nothing to eliminate: said so
   EXPECT_EQ(eliminated.summary.FinalCost(), ceres.summary.FinalCost());
   EXPECT_EQ(eliminated.points, ceres.points);
 
@@ -307,7 +268,9 @@ TEST(DedicatedEngineTest, PointsEliminatedEngineSolvesProblemWhenAskedForIt) {
     adjuster.problem()->AddResidualBlock(
         new ceres::AutoDiffCostFunction<CenterPrior, 3, 3>(new CenterPrior), nullptr,
         adjuster.CenterBlock(3));
-    ASSERT_TRUE(adjuster.Solve().success);
+    const ThreeViewBundleAdjustmentSummary summary = adjuster.Solve();
+    ASSERT_TRUE(summary.success);
+    EXPECT_EQ(summary.engine, Engine::kCeres);  // the caller's factors take part: said so
     with_prior.push_back(adjuster.CurrentPose());
   }
   EXPECT_LT(PoseDistance(with_prior[0], with_prior[1]), 1e-12);
@@ -316,8 +279,11 @@ TEST(DedicatedEngineTest, PointsEliminatedEngineSolvesProblemWhenAskedForIt) {
                 scene.ground_truth.cam2_from_cam1.Center().norm());
 }
 
-// Tight tolerances: both engines go to the same point (poses and points to 1e-9).
-TEST(DedicatedEngineTest, ConvergesToTheSamePointAtTightTolerances) {
+// Tight tolerances and iterations enough for both (kCeres takes more than 50 on the yaw-only
+// problem): both engines go to the same point, to the precision of the eliminated engine's inner
+// point minimisation: poses to 1e-7 (measured 4e-9), points to 1e-4 of their distance (measured
+// up to 1.3e-5: a distant point's depth is weakly determined, and moves far for a tiny cost).
+TEST(EngineAgreementTest, ConvergesToTheSamePointAtTightTolerances) {
   std::mt19937_64 rng(23);
   for (const RotationModel model : {RotationModel::kYawOnly, RotationModel::kGravityPrior}) {
     SyntheticScene scene;
@@ -330,21 +296,23 @@ TEST(DedicatedEngineTest, ConvergesToTheSamePointAtTightTolerances) {
     options.function_tolerance = 1e-15;
     options.parameter_tolerance = 1e-15;
     options.gradient_tolerance = 1e-15;
+    options.max_num_iterations = 1000;
     const Solved ceres = BuildAndSolve(observations, initial, options);
-    options.engine = Engine::kDedicated;
-    const Solved dedicated = BuildAndSolve(observations, initial, options);
-    ASSERT_TRUE(ceres.summary.success && dedicated.summary.success);
-    EXPECT_LT(PoseDistance(dedicated.pose, ceres.pose), 1e-9);
-    ASSERT_EQ(dedicated.points.size(), ceres.points.size());
+    options.engine = Engine::kCeresPointsEliminated;
+    const Solved eliminated = BuildAndSolve(observations, initial, options);
+    ASSERT_TRUE(ceres.summary.success && eliminated.summary.success);
+    EXPECT_LT(PoseDistance(eliminated.pose, ceres.pose), 1e-7);
+    ASSERT_EQ(eliminated.points.size(), ceres.points.size());
     for (std::size_t p = 0; p < ceres.points.size(); ++p) {
-      EXPECT_LT((dedicated.points[p] - ceres.points[p]).norm(), 1e-9 * ceres.points[p].norm());
+      EXPECT_LT((eliminated.points[p] - ceres.points[p]).norm(), 1e-4 * ceres.points[p].norm());
     }
   }
 }
 
-// The covariance from the dedicated engine's normal equations equals the one from the Ceres
-// problem's Jacobian, with either rotation model, loss and constant points.
-TEST(DedicatedEngineTest, CovarianceEqualsTheCeresEngines) {
+// The covariance after the points-eliminated engine's solve equals the one after kCeres', with
+// either rotation model and constant points (Huber's loss: Cauchy's cost can have several minima,
+// and the engines may stop in different ones).
+TEST(EngineAgreementTest, CovarianceEqualsTheCeresEngines) {
   std::mt19937_64 rng(29);
   for (const RotationModel model : {RotationModel::kYawOnly, RotationModel::kGravityPrior}) {
     for (const bool constant_points : {false, true}) {
@@ -353,14 +321,17 @@ TEST(DedicatedEngineTest, CovarianceEqualsTheCeresEngines) {
           SceneObservations(CameraModel::kPinhole, false, &rng, &scene);
       Options options;
       options.rotation_model = model;
-      options.loss = LossType::kCauchy;
+      options.loss = LossType::kHuber;
       options.loss_scale_px = 1.0;
       options.compute_covariance = true;
+      // Both engines at the same optimum (as in ConvergesToTheSamePointAtTightTolerances).
+      options.function_tolerance = options.gradient_tolerance = options.parameter_tolerance = 1e-15;
+      options.max_num_iterations = 1000;
       std::vector<char> all(observations.size(), 1);
       ThreeViewBundleAdjustmentConfig config;
       config.constant_points = constant_points;
       Eigen::MatrixXd covariance[2];
-      for (const Engine engine : {Engine::kCeres, Engine::kDedicated}) {
+      for (const Engine engine : {Engine::kCeres, Engine::kCeresPointsEliminated}) {
         options.engine = engine;
         if (!constant_points) {
           const ThreeViewRefinement refinement =
@@ -382,14 +353,14 @@ TEST(DedicatedEngineTest, CovarianceEqualsTheCeresEngines) {
       ASSERT_EQ(covariance[1].rows(), covariance[0].rows());
       EXPECT_LT((covariance[1] - covariance[0]).norm(), 1e-6 * covariance[0].norm())
           << "ceres\n"
-          << covariance[0] << "\ndedicated\n"
+          << covariance[0] << "\neliminated\n"
           << covariance[1];
     }
   }
 }
 
 // Constant points (motion-only): the same optimum and fixed cost as Ceres.
-TEST(DedicatedEngineTest, ConstantPointsMatchCeres) {
+TEST(EngineAgreementTest, ConstantPointsMatchCeres) {
   std::mt19937_64 rng(31);
   SyntheticScene scene;
   const ThreeViewObservations observations =
@@ -400,7 +371,7 @@ TEST(DedicatedEngineTest, ConstantPointsMatchCeres) {
   const ThreeViewPose initial = Perturbed(scene.ground_truth, &rng);
   ThreeViewBundleAdjustmentSummary summary[2];
   ThreeViewPose pose[2];
-  for (const Engine engine : {Engine::kCeres, Engine::kDedicated}) {
+  for (const Engine engine : {Engine::kCeres, Engine::kCeresPointsEliminated}) {
     options.engine = engine;
     ThreeViewBundleAdjuster adjuster(observations, config, options);
     ASSERT_TRUE(adjuster.Build(initial));
@@ -415,88 +386,14 @@ TEST(DedicatedEngineTest, ConstantPointsMatchCeres) {
               1e-9 * summary[0].ceres_summary.fixed_cost);
 }
 
-// What a thread's dedicated solves of one problem give: InitializeAndRefine (two runs, the second
-// warm-started, and the covariance from the engine's information) and a solve with the points
-// constant.
-struct DedicatedRuns {
-  ThreeViewEstimate estimate;
-  Solved constant_points;
-};
-
-DedicatedRuns SolveWithTheDedicatedEngine(const ThreeViewObservations& observations,
-                                          const ThreeViewPose& initial,
-                                          RotationModel model) {
-  InitializeAndRefineOptions options;
-  options.bundle_adjustment.engine = Engine::kDedicated;
-  options.bundle_adjustment.rotation_model = model;
-  options.bundle_adjustment.compute_covariance = true;
-  // The engine's runs, whatever the verdict makes of these weak forward-motion scenes.
-  options.robust.check_gravity_after_success = false;
-  options.robust.max_pose_sigma_deg = std::numeric_limits<double>::infinity();
-  DedicatedRuns runs;
-  runs.estimate = InitializeAndRefine(observations, options);
-  ThreeViewBundleAdjustmentConfig config;
-  config.constant_points = true;
-  runs.constant_points = BuildAndSolve(observations, initial, options.bundle_adjustment, config);
-  return runs;
-}
-
-void ExpectBitIdentical(const DedicatedRuns& a, const DedicatedRuns& b) {
-  ASSERT_TRUE(a.estimate.success && b.estimate.success) << a.estimate.message;
-  EXPECT_EQ(a.estimate.refinement_runs, b.estimate.refinement_runs);
-  EXPECT_EQ(a.estimate.inliers, b.estimate.inliers);
-  for (const auto& [x, y] : {std::pair(&a.estimate.refined, &b.estimate.refined),
-                             std::pair(&a.constant_points.pose, &b.constant_points.pose)}) {
-    EXPECT_EQ(x->cam2_from_cam1.R, y->cam2_from_cam1.R);
-    EXPECT_EQ(x->cam2_from_cam1.t, y->cam2_from_cam1.t);
-    EXPECT_EQ(x->cam3_from_cam1.R, y->cam3_from_cam1.R);
-    EXPECT_EQ(x->cam3_from_cam1.t, y->cam3_from_cam1.t);
-  }
-  EXPECT_EQ(a.estimate.refinement.summary.FinalCost(), b.estimate.refinement.summary.FinalCost());
-  EXPECT_EQ(a.estimate.refinement.points_in_cam1, b.estimate.refinement.points_in_cam1);
-  ASSERT_GT(a.estimate.refinement.covariance.size(), 0);
-  EXPECT_EQ(a.estimate.refinement.covariance, b.estimate.refinement.covariance);
-  EXPECT_EQ(a.constant_points.summary.FinalCost(), b.constant_points.summary.FinalCost());
-  EXPECT_EQ(a.constant_points.summary.Iterations(), b.constant_points.summary.Iterations());
-}
-
-// The engine hands its per-point storage on to the thread's next solve (three_view_lm_solver.cc).
-// Problems of 300, 120, 40 and again 300 triplets solved in turn on one thread, so that each finds
-// the storage of another problem, larger or smaller, give bit for bit what each gives on a fresh
-// thread, whose storage starts empty: InitializeAndRefine with its warm-started second run and the
-// covariance, and a solve with constant points, for both rotation models.
-TEST(DedicatedEngineTest, SolvesAlikeAfterOtherProblemsOnTheThread) {
-  std::mt19937_64 rng(61);
-  const int sizes[] = {300, 120, 40};
-  ThreeViewObservations problems[3];
-  ThreeViewPose initial[3];
-  for (int i = 0; i < 3; ++i) {
-    ThreeViewPose truth;
-    problems[i] = ForwardMotionObservations(sizes[i], &rng, &truth);
-    initial[i] = Perturbed(truth, &rng);
-  }
-  for (const RotationModel model : {RotationModel::kYawOnly, RotationModel::kGravityPrior}) {
-    for (const int i : {0, 1, 2, 0}) {
-      SCOPED_TRACE(std::to_string(sizes[i]) + " triplets");
-      const DedicatedRuns after_others =
-          SolveWithTheDedicatedEngine(problems[i], initial[i], model);
-      DedicatedRuns fresh;
-      std::thread([&] {
-        fresh = SolveWithTheDedicatedEngine(problems[i], initial[i], model);
-      }).join();
-      ExpectBitIdentical(after_others, fresh);
-    }
-  }
-}
-
 // Zero iterations: both stop at once (NO_CONVERGENCE, a usable solution), cost unchanged.
-TEST(DedicatedEngineTest, ZeroIterationsLikeCeres) {
+TEST(EngineAgreementTest, ZeroIterationsLikeCeres) {
   std::mt19937_64 rng(37);
   SyntheticScene scene;
   const ThreeViewObservations observations =
       SceneObservations(CameraModel::kPinhole, false, &rng, &scene);
   Options options;
-  options.engine = Engine::kDedicated;
+  options.engine = Engine::kCeresPointsEliminated;
   options.max_num_iterations = 0;
   const Solved solved = BuildAndSolve(observations, Perturbed(scene.ground_truth, &rng), options);
   EXPECT_TRUE(solved.summary.success);
@@ -507,13 +404,13 @@ TEST(DedicatedEngineTest, ZeroIterationsLikeCeres) {
 }
 
 // Failures: success false with a message, never a NaN pose.
-TEST(DedicatedEngineTest, FailuresGiveAMessage) {
+TEST(EngineAgreementTest, FailuresGiveAMessage) {
   std::mt19937_64 rng(41);
   SyntheticScene scene;
   const ThreeViewObservations observations =
       SceneObservations(CameraModel::kPinhole, false, &rng, &scene);
   Options options;
-  options.engine = Engine::kDedicated;
+  options.engine = Engine::kCeresPointsEliminated;
   std::vector<char> two(observations.size(), 0);
   two[0] = two[1] = 1;
   const ThreeViewRefinement few =
@@ -539,12 +436,12 @@ TEST(DedicatedEngineTest, FailuresGiveAMessage) {
 // A second refinement from the first one's pose and points: the known points are where it starts
 // (zero iterations return them), on the same inliers it has nothing left to do, and new inliers
 // are triangulated.
-TEST(DedicatedEngineTest, SecondRefinementStartsFromThePreviousPoints) {
+TEST(EngineAgreementTest, SecondRefinementStartsFromThePreviousPoints) {
   std::mt19937_64 rng(43);
   SyntheticScene scene;
   const ThreeViewObservations observations =
       SceneObservations(CameraModel::kPinhole, false, &rng, &scene);
-  for (const Engine engine : {Engine::kCeres, Engine::kDedicated}) {
+  for (const Engine engine : {Engine::kCeres, Engine::kCeresPointsEliminated}) {
     Options options;
     options.engine = engine;
     std::vector<char> first = scene.is_inlier;
@@ -580,64 +477,9 @@ TEST(DedicatedEngineTest, SecondRefinementStartsFromThePreviousPoints) {
   }
 }
 
-// The warm start of a second refinement (ba/derivations.md section 13.6) where it matters: forward
-// motion, on which the joint iteration removes the excess of new points' midpoints only slowly,
-// 600 triplets refined, then 5 more. The warm run (the first run's points, the new ones minimised
-// over with the cameras fixed) reaches the optimum of a cold run (every point triangulated again)
-// in fewer iterations, and in fewer than Ceres' rules take from the same start (the kCeres engine,
-// whose steps the dedicated engine takes without the warm start).
-TEST(DedicatedEngineStatisticalTest, WarmStartReachesTheColdOptimumInFewerIterations) {
-  std::mt19937_64 rng(53);
-  int warm_iterations = 0;
-  int ceres_iterations = 0;
-  for (const RotationModel model : {RotationModel::kYawOnly, RotationModel::kGravityPrior}) {
-    for (int trial = 0; trial < 6; ++trial) {
-      SCOPED_TRACE(std::string(model == RotationModel::kYawOnly ? "yaw-only" : "gravity-prior") +
-                   " trial " + std::to_string(trial));
-      ThreeViewPose truth;
-      const ThreeViewObservations observations = ForwardMotionObservations(600, &rng, &truth);
-      const std::vector<char> all(observations.size(), 1);
-      std::vector<char> first = all;
-      for (std::size_t i = 0; i < first.size(); i += 120) first[i] = 0;
-      Options options;
-      options.engine = Engine::kDedicated;
-      options.rotation_model = model;
-      options.gravity_sigma_deg = 0.05;
-      // Close enough to the optimum for the runs to be compared.
-      options.function_tolerance = 1e-10;
-      const ThreeViewRefinement refinement =
-          RefineThreeViewPose(observations, truth, first, options);
-      ASSERT_TRUE(refinement.summary.success) << refinement.summary.message;
-
-      const ThreeViewRefinement cold =
-          RefineThreeViewPose(observations, refinement.pose, all, options);
-      // The triplets the cold run could triangulate (a point of little parallax may fall behind a
-      // camera), so that the runs solve the same problem.
-      std::vector<char> inliers(observations.size(), 0);
-      for (const int i : cold.triplets) inliers[i] = 1;
-      const ThreeViewRefinement warm =
-          RefineThreeViewPose(observations, refinement.pose, inliers, options, refinement);
-      Options ceres_options = options;
-      ceres_options.engine = Engine::kCeres;
-      const ThreeViewRefinement ceres =
-          RefineThreeViewPose(observations, refinement.pose, inliers, ceres_options, refinement);
-      ASSERT_TRUE(warm.summary.success && cold.summary.success && ceres.summary.success);
-      ASSERT_EQ(warm.triplets, cold.triplets);
-      EXPECT_NEAR(warm.summary.FinalCost(), cold.summary.FinalCost(),
-                  1e-8 * cold.summary.FinalCost());
-      EXPECT_LT(PoseDistance(warm.pose, cold.pose), 1e-5);
-      EXPECT_LT(warm.summary.Iterations(), cold.summary.Iterations());
-      warm_iterations += warm.summary.Iterations();
-      ceres_iterations += ceres.summary.Iterations();
-    }
-  }
-  // Measured: 129 against 156 (217 cold); without the warm start both are 156.
-  EXPECT_LT(warm_iterations, 0.9 * ceres_iterations);
-}
-
 // InitializeAndRefine with either engine: the same inliers and refined pose, and the stages'
 // times add up within the refinement's.
-TEST(DedicatedEngineTest, InitializeAndRefineAgreesWithTheCeresEngine) {
+TEST(EngineAgreementTest, InitializeAndRefineAgreesWithTheCeresEngine) {
   std::mt19937_64 rng(47);
   for (int trial = 0; trial < 5; ++trial) {
     SyntheticSceneOptions scene_options;
@@ -653,7 +495,7 @@ TEST(DedicatedEngineTest, InitializeAndRefineAgreesWithTheCeresEngine) {
     // its pose stops up to 6e-6 from the others..
     options.bundle_adjustment.function_tolerance = 1e-12;
     const ThreeViewEstimate ceres = InitializeAndRefine(observations, options);
-    for (const Engine engine : {Engine::kDedicated, Engine::kCeresPointsEliminated}) {
+    for (const Engine engine : {Engine::kCeresPointsEliminated, Engine::kCeresPointsEliminated}) {
       SCOPED_TRACE(EngineName(engine));
       options.bundle_adjustment.engine = engine;
       const ThreeViewEstimate other = InitializeAndRefine(observations, options);

@@ -7,6 +7,7 @@
 #include <ceres/rotation.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -150,10 +151,20 @@ void NViewBundleAdjustmentConfig::Check(const NViewReconstruction& reconstructio
       Fail(where, Indexed("constant_images", i) + " out of range");
     }
   }
+  for (std::size_t i = 0; i < images_without_gravity.size(); ++i) {
+    if (images_without_gravity[i] < 0 || images_without_gravity[i] >= n) {
+      Fail(where, Indexed("images_without_gravity", i) + " out of range");
+    }
+  }
 }
 
 void NViewBundleAdjustmentOptions::Check() const {
-  CheckSharedFields("NViewBundleAdjustmentOptions");
+  const std::string where = "NViewBundleAdjustmentOptions";
+  CheckSharedFields(where);
+  const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+  if (!positive(max_gravity_disagreement_sigmas)) {
+    Fail(where, "max_gravity_disagreement_sigmas must be positive and finite");
+  }
 }
 
 ceres::Solver::Options NViewBundleAdjustmentOptions::CeresSolverOptions() const {
@@ -173,6 +184,12 @@ NViewBundleAdjuster::NViewBundleAdjuster(const NViewReconstruction& input,
   input_.Check();
   config_.Check(input_);
   options_.Check();
+  if (!config_.images_without_gravity.empty() &&
+      options_.rotation_model == NViewBundleAdjustmentOptions::RotationModel::kYawOnly) {
+    Fail("NViewBundleAdjuster",
+         "images_without_gravity needs the gravity-prior model (yaw-only builds every rotation "
+         "from its image's gravity)");
+  }
   Build();
 }
 
@@ -209,9 +226,14 @@ void NViewBundleAdjuster::Build() {
 
   // The world's gravity: the mean of the images' gravity directions mapped to the world,
   // g_w ~ sum_k R_k^T g_k / |g_k| (ba/derivations.md section 14.1).
+  std::vector<char> has_gravity(num_images, 1);
+  for (const int k : config_.images_without_gravity) has_gravity[k] = 0;
   Eigen::Vector3d gravity_sum = Eigen::Vector3d::Zero();
-  for (const NViewImage& image : input_.images) {
-    gravity_sum += image.cam_from_world.R.transpose() * image.gravity_in_cam.normalized();
+  for (int k = 0; k < num_images; ++k) {
+    const NViewImage& image = input_.images[k];
+    if (has_gravity[k]) {
+      gravity_sum += image.cam_from_world.R.transpose() * image.gravity_in_cam.normalized();
+    }
   }
   if (!(gravity_sum.norm() > 1e-6 * num_images)) {
     message_ = "the images' gravity directions cancel out in the world frame";
@@ -348,10 +370,12 @@ void NViewBundleAdjuster::Build() {
       problem_->SetManifold(&yaws_[k], CreateYawManifold());
     } else {
       // Pixel residuals and the prior's radians whitened alike: weight (sigma_px / sigma_g)^2.
-      prior_residuals_.push_back(problem_->AddResidualBlock(
-          GravityPriorError::Create(Eigen::Vector3d::UnitY(), input_.images[k].gravity_in_cam),
-          new ceres::ScaledLoss(nullptr, gravity_weight, ceres::TAKE_OWNERSHIP),
-          quaternions_[k].data()));
+      if (has_gravity[k]) {
+        prior_residuals_.push_back(problem_->AddResidualBlock(
+            GravityPriorError::Create(Eigen::Vector3d::UnitY(), input_.images[k].gravity_in_cam),
+            new ceres::ScaledLoss(nullptr, gravity_weight, ceres::TAKE_OWNERSHIP),
+            quaternions_[k].data()));
+      }
       problem_->SetManifold(quaternions_[k].data(),
                             k == reference ? static_cast<ceres::Manifold*>(new TiltChartManifold(
                                                  new TiltChartFunctor(quaternions_[k])))
@@ -434,6 +458,12 @@ NViewBundleAdjustmentSummary NViewBundleAdjuster::Solve() {
   summary.num_skipped_observations =
       static_cast<int>(input_.observations.size()) - summary.num_observations;
   for (const char used : point_used_) summary.num_points += used;
+  summary.observations_per_image.assign(input_.images.size(), 0);
+  for (const int i : used_observations_) {
+    ++summary.observations_per_image[input_.observations[i].image_index];
+  }
+  summary.rotation_model = options_.rotation_model;
+  summary.gravity_sigma_deg = options_.gravity_sigma_deg;
 
   const std::vector<double> start_yaws = yaws_;
   const std::vector<Eigen::Vector4d> start_quaternions = quaternions_;
@@ -505,20 +535,200 @@ NViewBundleAdjustmentSummary NViewBundleAdjuster::Solve() {
   return summary;
 }
 
+namespace {
+
+// Per image, the angle (deg) between its measured gravity and the one the images imply: R_k g_w,
+// with g_w the normalised sum of R_k^T g_k over the images whose `used` is set.
+std::vector<double> GravityDisagreementsDeg(const NViewReconstruction& reconstruction,
+                                            const std::vector<char>& used) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (std::size_t k = 0; k < reconstruction.images.size(); ++k) {
+    const NViewImage& image = reconstruction.images[k];
+    if (used[k]) sum += image.cam_from_world.R.transpose() * image.gravity_in_cam.normalized();
+  }
+  const Eigen::Vector3d gravity_in_world = sum.normalized();
+  std::vector<double> degrees(reconstruction.images.size());
+  for (std::size_t k = 0; k < degrees.size(); ++k) {
+    const NViewImage& image = reconstruction.images[k];
+    const Eigen::Vector3d implied = image.cam_from_world.R * gravity_in_world;
+    const Eigen::Vector3d measured = image.gravity_in_cam.normalized();
+    degrees[k] = std::atan2(implied.cross(measured).norm(), implied.dot(measured)) * 180.0 / M_PI;
+  }
+  return degrees;
+}
+
+// The gravity verdict on the images-dominated solution `seen` (ba/derivations.md section 14.4):
+// disagreements, the images whose gravity is kept, the Rayleigh estimate of the IMU's sigma from
+// them. Two rounds: the world's gravity from all images, then from the consistent ones.
+struct GravityVerdict {
+  std::vector<double> disagreement_deg;
+  std::vector<char> used;
+  double sigma_deg = 0.0;
+};
+
+GravityVerdict JudgeGravity(const NViewReconstruction& seen,
+                            const NViewBundleAdjustmentOptions& options) {
+  // The median of a Rayleigh distribution is sigma sqrt(2 ln 2).
+  const double rayleigh_median = std::sqrt(2.0 * std::log(2.0));
+  GravityVerdict verdict;
+  verdict.used.assign(seen.images.size(), 1);
+  for (int round = 0; round < 2; ++round) {
+    verdict.disagreement_deg = GravityDisagreementsDeg(seen, verdict.used);
+    std::vector<double> kept;
+    for (std::size_t k = 0; k < seen.images.size(); ++k) {
+      if (verdict.used[k]) kept.push_back(verdict.disagreement_deg[k]);
+    }
+    std::nth_element(kept.begin(), kept.begin() + kept.size() / 2, kept.end());
+    verdict.sigma_deg = kept[kept.size() / 2] / rayleigh_median;
+    const double bound = std::max(options.max_gravity_disagreement_sigmas * verdict.sigma_deg,
+                                  NViewBundleAdjustmentOptions::kMinGravityDisagreementBoundDeg);
+    for (std::size_t k = 0; k < seen.images.size(); ++k) {
+      verdict.used[k] = verdict.disagreement_deg[k] <= bound;
+    }
+  }
+  return verdict;
+}
+
+std::string ImageList(const std::vector<int>& images) {
+  std::ostringstream list;
+  for (std::size_t i = 0; i < images.size() && i < 10; ++i) list << (i ? ", " : "") << images[i];
+  if (images.size() > 10) list << " and " << images.size() - 10 << " more";
+  return list.str();
+}
+
+// Not a success when an image keeps fewer than half of its observations (at least 2 of them).
+void RefuseDroppedObservations(const NViewReconstruction& input,
+                               NViewBundleAdjustmentSummary* summary) {
+  if (!summary->success) return;
+  std::vector<int> given(input.images.size(), 0);
+  for (const NViewObservation& o : input.observations) ++given[o.image_index];
+  std::vector<int> dropped;
+  for (std::size_t k = 0; k < given.size(); ++k) {
+    if (given[k] >= 2 && 2 * summary->observations_per_image[k] < given[k]) {
+      dropped.push_back(static_cast<int>(k));
+    }
+  }
+  if (dropped.empty()) return;
+  summary->success = false;
+  summary->message = "image(s) " + ImageList(dropped) +
+                     " keep fewer than half of their observations (points behind the camera): a "
+                     "wrong pose or gravity; nothing refined";
+}
+
+}  // namespace
+
 NViewBundleAdjustmentSummary RefineWithGravity(const NViewReconstruction& input,
                                                const NViewBundleAdjustmentConfig& config,
                                                const NViewBundleAdjustmentOptions& options,
                                                NViewReconstruction* refined) {
   if (refined == nullptr) Fail("RefineWithGravity", "refined is null");
-  NViewBundleAdjuster adjuster(input, config, options);
-  NViewBundleAdjustmentSummary summary = adjuster.Solve();
-  if (summary.success) {
-    NViewReconstruction result = adjuster.CurrentReconstruction();  // `refined` may alias `input`
-    *refined = std::move(result);
-  } else if (refined != &input) {
-    *refined = input;
+  input.Check();
+  config.Check(input);
+  options.Check();
+  const auto finish = [&](NViewBundleAdjustmentSummary summary, const NViewReconstruction* result) {
+    RefuseDroppedObservations(input, &summary);
+    if (summary.success) {
+      NViewReconstruction copy = *result;  // `refined` may alias `input`
+      *refined = std::move(copy);
+    } else if (refined != &input) {
+      *refined = input;
+    }
+    return summary;
+  };
+  if (!options.check_gravity) {
+    NViewBundleAdjuster adjuster(input, config, options);
+    const NViewBundleAdjustmentSummary summary = adjuster.Solve();
+    const NViewReconstruction result =
+        summary.success ? adjuster.CurrentReconstruction() : NViewReconstruction();
+    return finish(summary, &result);
   }
-  return summary;
+
+  // 1. The images dominate: weak priors fix only the tilt's gauge.
+  NViewBundleAdjustmentOptions seeing = options;
+  seeing.rotation_model = NViewBundleAdjustmentOptions::RotationModel::kGravityPrior;
+  seeing.gravity_sigma_deg = NViewBundleAdjustmentOptions::kVerdictGravitySigmaDeg;
+  seeing.compute_covariance = false;
+  NViewBundleAdjustmentConfig seeing_config = config;
+  seeing_config.images_without_gravity.clear();
+  NViewBundleAdjuster first(input, seeing_config, seeing);
+  NViewBundleAdjustmentSummary first_summary = first.Solve();
+  if (!first_summary.success) {
+    first_summary.message = "the images-only solve failed: " + first_summary.message;
+    return finish(first_summary, nullptr);
+  }
+  const NViewReconstruction seen = first.CurrentReconstruction();
+
+  // 2. The verdict.
+  GravityVerdict verdict = JudgeGravity(seen, options);
+  for (const int k : config.images_without_gravity) verdict.used[k] = 0;
+  NViewBundleAdjustmentOptions final_options = options;
+  if (options.gravity_sigma_from_data) {
+    final_options.gravity_sigma_deg =
+        std::max(verdict.sigma_deg, NViewBundleAdjustmentOptions::kMinEstimatedGravitySigmaDeg);
+  }
+  NViewBundleAdjustmentConfig final_config = config;
+  final_config.images_without_gravity.clear();
+  for (std::size_t k = 0; k < verdict.used.size(); ++k) {
+    if (!verdict.used[k]) final_config.images_without_gravity.push_back(static_cast<int>(k));
+  }
+  std::ostringstream note;
+  if (!final_config.images_without_gravity.empty()) {
+    note << "gravity left out of image(s) " << ImageList(final_config.images_without_gravity)
+         << " (the images disagree with it by up to "
+         << *std::max_element(verdict.disagreement_deg.begin(), verdict.disagreement_deg.end())
+         << " deg; IMU sigma " << verdict.sigma_deg << " deg)";
+  }
+  // 3. The final solve, from the images-dominated solution: yaw-only if asked for and the data
+  // accept exact tilts, else the gravity prior.
+  NViewBundleAdjustmentSummary summary;
+  NViewReconstruction result;
+  bool solved = false;
+  if (options.rotation_model == NViewBundleAdjustmentOptions::RotationModel::kYawOnly) {
+    if (!final_config.images_without_gravity.empty()) {
+      note << "; yaw-only refused (those images contradict their gravity): the gravity-prior "
+              "model solved";
+    } else {
+      NViewBundleAdjuster yaw_only(seen, final_config, final_options);
+      summary = yaw_only.Solve();
+      const ceres::Solver::Summary& seen_report = first_summary.ceres_summary;
+      const double noise_variance =
+          2.0 * seen_report.final_cost /
+          std::max(1, seen_report.num_residuals - seen_report.num_effective_parameters);
+      int constrained = 0;
+      for (const int n : summary.observations_per_image) constrained += n > 0 ? 2 : 0;
+      const double expected = 0.5 * noise_variance * constrained;
+      const double bound = expected + 0.5 * noise_variance *
+                                          NViewBundleAdjustmentOptions::kYawOnlyTestSigmas *
+                                          std::sqrt(2.0 * constrained);
+      const double rise = summary.FinalCost() - seen_report.final_cost;
+      solved = summary.success && rise <= bound;
+      if (solved) {
+        result = yaw_only.CurrentReconstruction();
+      } else if (summary.success) {
+        note << (note.tellp() > 0 ? "; " : "") << "yaw-only refused: exact tilts raise the cost by "
+             << rise << " (exact gravity: " << expected << ", at most " << bound
+             << "): the gravity-prior model solved";
+      }
+    }
+    final_options.rotation_model = NViewBundleAdjustmentOptions::RotationModel::kGravityPrior;
+  }
+  if (!solved) {
+    const double yaw_only_s = summary.solve_s;
+    NViewBundleAdjuster prior(seen, final_config, final_options);
+    summary = prior.Solve();
+    summary.solve_s += yaw_only_s;
+    if (summary.success) result = prior.CurrentReconstruction();
+  }
+  summary.solve_s += first_summary.solve_s;
+  summary.gravity_disagreement_deg = verdict.disagreement_deg;
+  summary.gravity_used = verdict.used;
+  summary.estimated_gravity_sigma_deg = verdict.sigma_deg;
+  std::string notes = note.str();
+  if (notes.rfind("; ", 0) == 0) notes.erase(0, 2);
+  if (summary.success && !notes.empty()) {
+    summary.message = summary.message.empty() ? notes : summary.message + "; " + notes;
+  }
+  return finish(summary, &result);
 }
 
 }  // namespace trigrav

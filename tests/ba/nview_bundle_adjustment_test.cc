@@ -232,13 +232,15 @@ TEST(NViewBundleAdjustmentTest, ReturnsTheResultInTheCallersWorldFrame) {
   }
 }
 
+// One solve of fixed options (no gravity verdict, whose estimated sigma follows its input).
 TEST(NViewBundleAdjustmentTest, NoOpAtTheOptimum) {
   for (const RotationModel model : {RotationModel::kYawOnly, RotationModel::kGravityPrior}) {
     const NViewReconstruction truth = MakeNViewScene({}, 13).truth;
     NViewReconstruction once, twice;
-    ASSERT_TRUE(RefineWithGravity(truth, {}, Options(model), &once).success);
-    const NViewBundleAdjustmentSummary summary =
-        RefineWithGravity(once, {}, Options(model), &twice);
+    NViewBundleAdjustmentOptions options = Options(model);
+    options.check_gravity = false;
+    ASSERT_TRUE(RefineWithGravity(truth, {}, options, &once).success);
+    const NViewBundleAdjustmentSummary summary = RefineWithGravity(once, {}, options, &twice);
     ASSERT_TRUE(summary.success) << summary.message;
     EXPECT_NEAR(summary.FinalCost(), summary.InitialCost(), 1e-9 * summary.InitialCost());
     for (std::size_t k = 0; k < once.images.size(); ++k) {
@@ -550,6 +552,103 @@ TEST(NViewBundleAdjustmentTest, RejectsBadInput) {
   bad_options.linear_solver_type = static_cast<ceres::LinearSolverType>(7);
   expect_error(good, {}, bad_options, "linear_solver_type");
   EXPECT_THROW(RefineWithGravity(good, {}, options, nullptr), std::invalid_argument);
+}
+
+// The gravity verdict of RefineWithGravity (nview_bundle_adjustment.h, ba/derivations.md section
+// 14.4), with default options but for the test's tolerances and loss, on 40 images.
+class NViewGravityVerdictTest : public ::testing::Test {
+ protected:
+  static NViewReconstruction Scene(double gravity_noise_deg, std::uint64_t seed) {
+    NViewSceneOptions scene_options;
+    scene_options.num_images = 40;
+    scene_options.num_points = 800;
+    scene_options.gravity_noise_deg = gravity_noise_deg;
+    return MakeNViewScene(scene_options, seed).truth;
+  }
+  // The image-by-image RMS after a refinement of `start` with `options`.
+  static NViewBundleAdjustmentSummary Refine(const NViewReconstruction& start,
+                                             const NViewBundleAdjustmentOptions& options,
+                                             NViewReconstruction* refined) {
+    const NViewBundleAdjustmentSummary summary = RefineWithGravity(start, {}, options, refined);
+    EXPECT_TRUE(summary.success) << summary.message;
+    return summary;
+  }
+};
+
+// A flipped sign or a 10 deg error in one image's gravity: that image loses its gravity and is
+// named, yaw-only falls back to the gravity prior, and every image's RMS stays that of the model
+// with the right gravity.
+TEST_F(NViewGravityVerdictTest, NamesAWrongGravityAndKeepsEveryImageRight) {
+  const NViewReconstruction truth = Scene(0.0, 21);
+  const NViewReconstruction start = PerturbReconstruction(truth, 0.5, 0.02, 0.01, 22);
+  NViewReconstruction right;
+  const NViewBundleAdjustmentSummary reference =
+      Refine(start, Options(RotationModel::kYawOnly), &right);
+  EXPECT_EQ(reference.rotation_model, RotationModel::kYawOnly);  // exact gravity: yaw-only kept
+  // Exact gravity: the estimate is the images' own tilt noise (0.04 deg measured on this scene).
+  EXPECT_LT(reference.estimated_gravity_sigma_deg, 0.06);
+  EXPECT_EQ(std::count(reference.gravity_used.begin(), reference.gravity_used.end(), 0), 0);
+  const int wrong = 17;
+  for (const double error_deg : {180.0, 10.0}) {
+    SCOPED_TRACE(error_deg);
+    NViewReconstruction input = start;
+    Eigen::Vector3d& g = input.images[wrong].gravity_in_cam;
+    g = Eigen::AngleAxisd(error_deg * M_PI / 180.0, g.unitOrthogonal()) * g;
+    NViewReconstruction refined;
+    const NViewBundleAdjustmentSummary summary =
+        Refine(input, Options(RotationModel::kYawOnly), &refined);
+    EXPECT_EQ(summary.gravity_used[wrong], 0);
+    EXPECT_EQ(std::count(summary.gravity_used.begin(), summary.gravity_used.end(), 0), 1);
+    EXPECT_NEAR(summary.gravity_disagreement_deg[wrong], error_deg, 0.5);
+    EXPECT_NE(summary.message.find("image(s) 17"), std::string::npos) << summary.message;
+    EXPECT_EQ(summary.rotation_model, RotationModel::kGravityPrior);
+    EXPECT_EQ(summary.num_skipped_observations, 0);
+    for (std::size_t k = 0; k < truth.images.size(); ++k) {
+      EXPECT_LT(summary.residual_rms_px[k], 1.1 * reference.residual_rms_px[k] + 0.05) << k;
+    }
+  }
+}
+
+// 0.1 deg of IMU noise: the verdict estimates the sigma (Rayleigh, 40 images), refuses yaw-only,
+// and the model is no worse than the images alone would make it.
+TEST_F(NViewGravityVerdictTest, EstimatesTheImuSigmaAndRefusesYawOnlyUnderNoise) {
+  const NViewReconstruction truth = Scene(0.1, 23);
+  const NViewReconstruction start = PerturbReconstruction(truth, 0.5, 0.02, 0.01, 24);
+  NViewReconstruction refined, images_only;
+  const NViewBundleAdjustmentSummary summary =
+      Refine(start, Options(RotationModel::kYawOnly), &refined);
+  EXPECT_GT(summary.estimated_gravity_sigma_deg, 0.05);
+  EXPECT_LT(summary.estimated_gravity_sigma_deg, 0.2);
+  EXPECT_EQ(summary.gravity_sigma_deg, summary.estimated_gravity_sigma_deg);
+  EXPECT_EQ(summary.rotation_model, RotationModel::kGravityPrior);
+  EXPECT_NE(summary.message.find("yaw-only refused"), std::string::npos) << summary.message;
+  NViewBundleAdjustmentOptions weak = Options(RotationModel::kGravityPrior);
+  weak.check_gravity = false;
+  weak.gravity_sigma_deg = NViewBundleAdjustmentOptions::kVerdictGravitySigmaDeg;
+  Refine(start, weak, &images_only);
+  EXPECT_LT(SimilarityAlignedErrors(truth, refined).rotation_deg,
+            1.05 * SimilarityAlignedErrors(truth, images_only).rotation_deg);
+}
+
+// An image turned about (its pose rotated by 180 deg about its vertical, its gravity with it): its
+// points lie behind it and its observations leave the problem. Never a success, the image named.
+TEST_F(NViewGravityVerdictTest, NeverSucceedsWithAnImagesObservationsDropped) {
+  NViewReconstruction input = Scene(0.0, 25);
+  CameraPose& pose = input.images[9].cam_from_world;
+  const Eigen::Vector3d center = pose.Center();
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  pose.R = turn * pose.R;
+  pose.t = -pose.R * center;
+  input.images[9].gravity_in_cam = turn * input.images[9].gravity_in_cam;
+  for (const bool check_gravity : {true, false}) {
+    NViewBundleAdjustmentOptions options = Options(RotationModel::kGravityPrior);
+    options.check_gravity = check_gravity;
+    NViewReconstruction refined;
+    const NViewBundleAdjustmentSummary summary = RefineWithGravity(input, {}, options, &refined);
+    EXPECT_FALSE(summary.success);
+    EXPECT_NE(summary.message.find("image(s) 9 keep fewer than half"), std::string::npos)
+        << summary.message;
+  }
 }
 
 }  // namespace

@@ -53,6 +53,7 @@
 #include <ceres/types.h>
 
 #include <Eigen/Core>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -105,6 +106,11 @@ struct NViewBundleAdjustmentConfig {
   // A_k^T R_y(yaw_k) W with the starting (best-fitting) yaw: the given rotation snapped to the
   // image's gravity (the same for the reference image).
   std::vector<int> constant_images;
+  // Images whose measured gravity is left out: not in the world's gravity estimate and without a
+  // gravity prior, their tilt set by the images alone. Only with kGravityPrior (kYawOnly builds
+  // every rotation from its image's gravity; the adjuster throws std::invalid_argument).
+  // RefineWithGravity fills it with the images its gravity verdict finds inconsistent.
+  std::vector<int> images_without_gravity;
   // Keep every point constant (motion-only refinement).
   bool constant_points = false;
 
@@ -125,7 +131,33 @@ struct NViewBundleAdjustmentConfig {
 //    driving sequence of 300 images (examples/benchmarks/README.md,
 //    nview_bundle_adjustment_benchmark); ITERATIVE_SCHUR gets the SCHUR_JACOBI preconditioner.
 //  - stop_requested is called after each iteration.
+// RefineWithGravity's gravity verdict (check_gravity, ba/derivations.md section 14.4): a first
+// solve in which the images dominate (gravity priors of kVerdictGravitySigmaDeg, only the tilt's
+// gauge from gravity) gives the gravity the images imply for each image; the angle to its measured
+// gravity is its disagreement d_k. The IMU's sigma is the Rayleigh estimate from the median of the
+// d_k (gravity_sigma_from_data), robust to a few wrong images; an image with d_k beyond
+// max(max_gravity_disagreement_sigmas x sigma, kMinGravityDisagreementBoundDeg) loses its gravity
+// (Config::images_without_gravity) and is named. Yaw-only, which takes every gravity as exact, is
+// kept only when no image lost its gravity and the data accept exact tilts: imposing them (2
+// constraints per image, c in all) raises the cost of the images-dominated solution by
+// (1/2) s^2 chi^2(c) for exact gravity, s the pixel noise estimated from that solution's cost, so
+// a rise beyond (1/2) s^2 (c + kYawOnlyTestSigmas sqrt(2 c)) refuses yaw-only; the gravity-prior
+// model is then solved with the estimated sigma, and the summary says why.
+//  - max_gravity_disagreement_sigmas = 5: a consistent image lies beyond 5 sigma with probability
+//    exp(-12.5) = 4e-6 (Rayleigh), a flipped sign (180 deg) or a 10 deg error far beyond.
+//  - kYawOnlyTestSigmas = 4: exact gravity fails the test with a probability of about 1e-4.
 struct NViewBundleAdjustmentOptions : BundleAdjustmentOptions {
+  static constexpr double kVerdictGravitySigmaDeg = 10.0;
+  static constexpr double kMinGravityDisagreementBoundDeg = 0.02;
+  static constexpr double kMinEstimatedGravitySigmaDeg = 0.005;
+  static constexpr double kYawOnlyTestSigmas = 4.0;
+
+  bool check_gravity = true;
+  // Use the sigma the verdict estimates (at least kMinEstimatedGravitySigmaDeg) instead of
+  // gravity_sigma_deg.
+  bool gravity_sigma_from_data = true;
+  double max_gravity_disagreement_sigmas = 5.0;
+
   NViewBundleAdjustmentOptions()
       : BundleAdjustmentOptions(/*gravity_sigma_deg=*/0.1,
                                 /*max_num_iterations=*/100,
@@ -134,7 +166,8 @@ struct NViewBundleAdjustmentOptions : BundleAdjustmentOptions {
                                 /*gradient_tolerance=*/1e-10,
                                 /*parameter_tolerance=*/1e-8) {}
 
-  // Throws std::invalid_argument naming the first bad field.
+  // Throws std::invalid_argument naming the first bad field (the shared ones, then the verdict's
+  // bounds: positive and finite).
   void Check() const;
   // The shared Ceres options; SCHUR_JACOBI with ITERATIVE_SCHUR. Solve() fails with Ceres' message
   // when Solver::Options::IsValid rejects them.
@@ -167,7 +200,19 @@ struct NViewBundleAdjustmentSummary : CeresSolveReport {
   // the scale image's fixed centre coordinate (a null direction of its C block), constant images
   // and images without observations.
   std::vector<Eigen::MatrixXd> covariances;
-  double solve_s = 0.0;       // wall-clock seconds of ceres::Solve
+  // Per image: its observations in the problem.
+  std::vector<int> observations_per_image;
+  // The rotation model solved and the IMU sigma its priors used (kGravityPrior).
+  BundleAdjustmentOptions::RotationModel rotation_model =
+      BundleAdjustmentOptions::RotationModel::kYawOnly;
+  double gravity_sigma_deg = 0.0;
+  // RefineWithGravity's gravity verdict (NViewBundleAdjustmentOptions; empty and NaN without it):
+  // per image, the angle between its measured gravity and the one the images imply (deg), and
+  // whether its gravity took part; the IMU sigma estimated from the consistent images (deg).
+  std::vector<double> gravity_disagreement_deg;
+  std::vector<char> gravity_used;
+  double estimated_gravity_sigma_deg = std::numeric_limits<double>::quiet_NaN();
+  double solve_s = 0.0;       // wall-clock seconds of ceres::Solve (both solves of the verdict)
   double covariance_s = 0.0;  // wall-clock seconds of the covariances
 };
 
@@ -244,10 +289,14 @@ class NViewBundleAdjuster {
   std::vector<ceres::ResidualBlockId> prior_residuals_;
 };
 
-// One call: builds an NViewBundleAdjuster on `input`, solves, and writes the refined reconstruction
-// to *refined (the input's cameras and observations, refined poses and points in the caller's world
-// frame; the input unchanged on failure). `refined` may alias `input`. Throws as the adjuster's
-// constructor; std::invalid_argument for a null `refined`.
+// One call: the gravity verdict when options.check_gravity (above NViewBundleAdjustmentOptions:
+// a solve in which the images dominate, then the final solve from its result with the inconsistent
+// images' gravity left out and the estimated sigma), else one NViewBundleAdjuster on `input`; then
+// writes the refined reconstruction to *refined (the input's cameras and observations, refined
+// poses and points in the caller's world frame; the input unchanged on failure). `refined` may
+// alias `input`. Not a success when an image keeps fewer than half of its observations in the
+// final problem (its points behind it: a wrong pose or gravity), the image named. Throws as the
+// adjuster's constructor; std::invalid_argument for a null `refined`.
 NViewBundleAdjustmentSummary RefineWithGravity(const NViewReconstruction& input,
                                                const NViewBundleAdjustmentConfig& config,
                                                const NViewBundleAdjustmentOptions& options,

@@ -731,4 +731,28 @@ NViewBundleAdjustmentSummary RefineWithGravity(const NViewReconstruction& input,
   return finish(summary, &result);
 }
 
+NViewReconstruction UprightReconstruction(const NViewReconstruction& reconstruction,
+                                          const Eigen::Vector3d& gravity_in_world) {
+  if (!gravity_in_world.allFinite() || !(gravity_in_world.norm() > 0.0)) {
+    Fail("UprightReconstruction", "gravity_in_world must be finite and non-zero");
+  }
+  // upright_from_world: rows x, y, z of the new axes in the old frame.
+  const Eigen::Vector3d y = gravity_in_world.normalized();
+  Eigen::Vector3d z = Eigen::Vector3d::UnitZ() - y.z() * y;
+  if (z.norm() < 1e-6) z = Eigen::Vector3d::UnitX() - y.x() * y;
+  z.normalize();
+  Eigen::Matrix3d upright_from_world;
+  upright_from_world.row(0) = y.cross(z);
+  upright_from_world.row(1) = y;
+  upright_from_world.row(2) = z;
+  NViewReconstruction out = reconstruction;
+  for (NViewImage& image : out.images) {
+    const Eigen::Vector3d center = upright_from_world * image.cam_from_world.Center();
+    image.cam_from_world.R = image.cam_from_world.R * upright_from_world.transpose();
+    image.cam_from_world.t = -image.cam_from_world.R * center;
+  }
+  for (Eigen::Vector3d& point : out.points_in_world) point = upright_from_world * point;
+  return out;
+}
+
 }  // namespace trigrav

@@ -651,5 +651,30 @@ TEST_F(NViewGravityVerdictTest, NeverSucceedsWithAnImagesObservationsDropped) {
   }
 }
 
+// The upright frame: +y along the world's gravity; every pixel's projection unchanged.
+TEST(NViewBundleAdjustmentTest, UprightReconstructionPutsGravityOnY) {
+  const NViewReconstruction truth = MakeNViewScene({}, 27).truth;
+  NViewReconstruction refined;
+  const NViewBundleAdjustmentSummary summary =
+      RefineWithGravity(truth, {}, Options(RotationModel::kYawOnly), &refined);
+  ASSERT_TRUE(summary.success) << summary.message;
+  const NViewReconstruction upright = UprightReconstruction(refined, summary.gravity_in_world);
+  for (std::size_t k = 0; k < upright.images.size(); ++k) {
+    // Yaw-only keeps every image's measured gravity: R_k^T g_k is the world's +y.
+    const Eigen::Vector3d down = upright.images[k].cam_from_world.R.transpose() *
+                                 upright.images[k].gravity_in_cam.normalized();
+    EXPECT_LT((down - Eigen::Vector3d::UnitY()).norm(), 1e-9) << k;
+  }
+  for (std::size_t i = 0; i < upright.observations.size(); i += 97) {
+    const NViewObservation& o = upright.observations[i];
+    const auto project = [&](const NViewReconstruction& r) {
+      const CameraPose& pose = r.images[o.image_index].cam_from_world;
+      return r.cameras[0].Project(pose.R * r.points_in_world[o.point_index] + pose.t);
+    };
+    EXPECT_LT((project(upright) - project(refined)).norm(), 1e-8);
+  }
+  EXPECT_THROW(UprightReconstruction(refined, Eigen::Vector3d::Zero()), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace trigrav

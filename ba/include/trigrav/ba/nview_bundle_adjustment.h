@@ -302,6 +302,13 @@ NViewBundleAdjustmentSummary RefineWithGravity(const NViewReconstruction& input,
                                                const NViewBundleAdjustmentOptions& options,
                                                NViewReconstruction* refined);
 
+// The reconstruction in an upright world frame: rotated about the origin so that +y is
+// `gravity_in_world` (down; e.g. NViewBundleAdjustmentSummary::gravity_in_world), +z the horizontal
+// part of the old +z (or of the old +x where +z is vertical). Poses and points move, the cameras'
+// views of the points do not. Throws std::invalid_argument for a zero or non-finite gravity.
+NViewReconstruction UprightReconstruction(const NViewReconstruction& reconstruction,
+                                          const Eigen::Vector3d& gravity_in_world);
+
 }  // namespace trigrav
 
 #endif  // TRIGRAV_BA_NVIEW_BUNDLE_ADJUSTMENT_H_

@@ -9,6 +9,7 @@ packages=(
   python3-matplotlib
   pybind11-dev python3-pybind11 python3-dev python3-numpy  # the Python module trigrav
   python3-pytest         # its tests
+  python3-dask python3-distributed python3-tqdm  # the Dask triplet pipeline (ba/python/trigrav_pipeline)
   python3-opencv         # the Python KITTI example (SIFT); the module never uses it
   libopencv-dev          # KITTI tool only (SIFT features); the library never links it
   libopengv-dev          # optional peer rows in the comparisons; the library never links it

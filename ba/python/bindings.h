@@ -21,6 +21,8 @@ void BindSolvers(py::module_& m);     // the minimal and non-minimal solvers
 void BindRobust(py::module_& m);      // RANSAC options and the robust estimate
 void BindRefine(py::module_& m);      // bundle adjustment, refine-only, InitializeAndRefine, batch
 void BindEvaluation(py::module_& m);  // synthetic scenes and error metrics
+void BindNView(py::module_& m);       // N-view bundle adjustment: RefineWithGravity
+void BindColmap(py::module_& m);      // trigrav::colmap (built with it): models, database, triplets
 
 // An options struct as a Python class: construction from keyword arguments (each a field; then the
 // struct's Check(), so bad values raise ValueError), the fields as attributes, and a repr listing

@@ -38,4 +38,8 @@ PYBIND11_MODULE(trigrav, m) {
   trigrav::python::BindRobust(m);
   trigrav::python::BindRefine(m);
   trigrav::python::BindEvaluation(m);
+  trigrav::python::BindNView(m);
+#ifdef TRIGRAV_PYTHON_WITH_COLMAP
+  trigrav::python::BindColmap(m);
+#endif
 }

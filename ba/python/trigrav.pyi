@@ -7,7 +7,7 @@ module (RansacOptions(), InitialSolver.TRIFOCAL_3PT); every enum value and const
 `# value = <repr() of the module's value>`, e.g. `NONE: ClassVar[FailureCause]  # value =
 <FailureCause.NONE: 0>`, so that names and integer values are both compared."""
 
-from typing import ClassVar, List, Optional, Sequence, Tuple, Union
+from typing import ClassVar, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -576,3 +576,272 @@ class YawTiltErrorDeg:
 
 def split_rotation_error_deg(R_gt: ArrayLike, R: ArrayLike, gravity_in_cam: ArrayLike) -> YawTiltErrorDeg: ...
 def three_view_errors(observations: ThreeViewObservations, pose: ThreeViewPose) -> Array: ...
+
+# --- N-view gravity-aware bundle adjustment (bind_nview.cc) -----------------------------------
+
+class NViewBundleAdjustmentOptions:
+    """The enums are ThreeViewBundleAdjustmentOptions' (one C++ type)."""
+    rotation_model: ThreeViewBundleAdjustmentOptions.RotationModel
+    loss: ThreeViewBundleAdjustmentOptions.LossType
+    loss_scale_px: float
+    pixel_sigma_px: float
+    gravity_sigma_deg: float
+    compute_covariance: bool
+    max_num_iterations: int
+    num_threads: int
+    linear_solver_type: ThreeViewBundleAdjustmentOptions.LinearSolverType
+    function_tolerance: float
+    gradient_tolerance: float
+    parameter_tolerance: float
+    def __init__(
+        self,
+        *,
+        rotation_model: ThreeViewBundleAdjustmentOptions.RotationModel = ThreeViewBundleAdjustmentOptions.RotationModel.YAW_ONLY,
+        loss: ThreeViewBundleAdjustmentOptions.LossType = ThreeViewBundleAdjustmentOptions.LossType.HUBER,
+        loss_scale_px: float = 2.0,
+        pixel_sigma_px: float = 1.0,
+        gravity_sigma_deg: float = 0.1,
+        compute_covariance: bool = False,
+        max_num_iterations: int = 100,
+        num_threads: int = 1,
+        linear_solver_type: ThreeViewBundleAdjustmentOptions.LinearSolverType = ThreeViewBundleAdjustmentOptions.LinearSolverType.SPARSE_SCHUR,
+        function_tolerance: float = 1e-06,
+        gradient_tolerance: float = 1e-10,
+        parameter_tolerance: float = 1e-08,
+    ) -> None: ...
+
+class NViewBundleAdjustmentConfig:
+    reference_image: int
+    scale_image: int
+    constant_images: List[int]
+    constant_points: bool
+    def __init__(
+        self,
+        *,
+        reference_image: int = 0,
+        scale_image: int = -1,
+        constant_images: List[int] = [],
+        constant_points: bool = False,
+    ) -> None: ...
+
+class NViewImage:
+    camera_index: int
+    cam_from_world: CameraPose
+    gravity_in_cam: Array  # (3,), a copy
+    def __init__(self, camera_index: int, cam_from_world: CameraPose, gravity_in_cam: ArrayLike) -> None: ...
+
+class NViewReconstruction:
+    """Array properties are copies; assign to change them."""
+    cameras: List[Camera]
+    images: List[NViewImage]
+    points_in_world: Array  # P x 3
+    def __init__(
+        self,
+        cameras: List[Camera] = [],
+        images: List[NViewImage] = [],
+        points_in_world: Optional[ArrayLike] = None,  # P x 3
+        observation_image_indices: Optional[ArrayLike] = None,  # (M,)
+        observation_point_indices: Optional[ArrayLike] = None,  # (M,)
+        observation_pixels: Optional[ArrayLike] = None,  # M x 2
+    ) -> None: ...
+    @property
+    def observation_image_indices(self) -> npt.NDArray[np.int32]: ...
+    @property
+    def observation_point_indices(self) -> npt.NDArray[np.int32]: ...
+    @property
+    def observation_pixels(self) -> Array: ...  # M x 2
+    @property
+    def cams_from_world_R(self) -> Array: ...  # N x 3 x 3
+    @property
+    def cams_from_world_t(self) -> Array: ...  # N x 3
+    @property
+    def centers(self) -> Array: ...  # N x 3
+    @property
+    def gravity_in_cam(self) -> Array: ...  # N x 3
+    @property
+    def num_observations(self) -> int: ...
+    def check(self) -> None: ...
+
+class NViewBundleAdjustmentSummary:
+    @property
+    def success(self) -> bool: ...
+    @property
+    def message(self) -> str: ...
+    @property
+    def num_images(self) -> int: ...
+    @property
+    def num_points(self) -> int: ...
+    @property
+    def num_observations(self) -> int: ...
+    @property
+    def num_skipped_observations(self) -> int: ...
+    @property
+    def gravity_in_world(self) -> Array: ...  # (3,)
+    @property
+    def residual_rms_px(self) -> Array: ...  # (N,)
+    @property
+    def covariances(self) -> List[Array]: ...  # N of 4 x 4 or 6 x 6, or []
+    @property
+    def solve_s(self) -> float: ...
+    @property
+    def covariance_s(self) -> float: ...
+    @property
+    def initial_cost(self) -> float: ...
+    @property
+    def final_cost(self) -> float: ...
+    @property
+    def iterations(self) -> int: ...
+    def brief_report(self) -> str: ...
+    def full_report(self) -> str: ...
+
+def refine_with_gravity(
+    reconstruction: NViewReconstruction,
+    config: NViewBundleAdjustmentConfig = NViewBundleAdjustmentConfig(),
+    options: NViewBundleAdjustmentOptions = NViewBundleAdjustmentOptions(),
+) -> Tuple[NViewBundleAdjustmentSummary, NViewReconstruction]: ...
+
+# --- COLMAP: models, database, gravity CSV, triplets (bind_colmap.cc; built with trigrav::colmap)
+
+class ModelFormat:
+    TEXT: ClassVar[ModelFormat]  # value = <ModelFormat.TEXT: 0>
+    BINARY: ClassVar[ModelFormat]  # value = <ModelFormat.BINARY: 1>
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
+class ColmapCamera:
+    camera_id: int
+    camera: Camera
+    width: int
+    height: int
+    def __init__(self, camera_id: int, camera: Camera, width: int, height: int) -> None: ...
+
+class ColmapImage:
+    image_id: int
+    name: str
+    camera_id: int
+    cam_from_world: CameraPose
+    points2D: Array  # N x 2, a copy
+    point3D_ids: npt.NDArray[np.int64]  # (N,), -1 for none, a copy
+    def __init__(
+        self,
+        image_id: int,
+        name: str,
+        camera_id: int,
+        cam_from_world: CameraPose = CameraPose(),
+        points2D: Optional[ArrayLike] = None,
+        point3D_ids: Optional[ArrayLike] = None,
+    ) -> None: ...
+
+class ColmapPoint3D:
+    xyz: Array  # (3,), a copy
+    color: npt.NDArray[np.uint8]  # (3,)
+    error: float
+    track: npt.NDArray[np.uint32]  # K x 2 (image_id, point2D_idx)
+    def __init__(
+        self, xyz: ArrayLike, color: Optional[ArrayLike] = None, error: float = -1.0, track: Optional[ArrayLike] = None
+    ) -> None: ...
+
+class Reconstruction:
+    """cameras, images, points3D: dicts of copies keyed by id; assign a dict to change them."""
+    cameras: Dict[int, ColmapCamera]
+    images: Dict[int, ColmapImage]
+    points3D: Dict[int, ColmapPoint3D]
+    def __init__(self) -> None: ...
+    @property
+    def num_cameras(self) -> int: ...
+    @property
+    def num_images(self) -> int: ...
+    @property
+    def num_points3D(self) -> int: ...
+    @property
+    def point3D_ids(self) -> npt.NDArray[np.uint64]: ...
+    @property
+    def points3D_xyz(self) -> Array: ...  # P x 3
+    def check(self) -> None: ...
+
+def read_model(folder: str, format: Optional[ModelFormat] = None) -> Reconstruction: ...
+def write_model(
+    reconstruction: Reconstruction, folder: str, format: ModelFormat = ModelFormat.BINARY, create_parents: bool = False
+) -> None: ...
+
+class DatabaseImage:
+    image_id: int
+    name: str
+    camera_id: int
+    def __init__(self, image_id: int, name: str, camera_id: int) -> None: ...
+
+class TwoViewGeometry:
+    image_id1: int
+    image_id2: int
+    config: int
+    matches: npt.NDArray[np.uint32]  # K x 2, a copy
+    def __init__(self, image_id1: int, image_id2: int, config: int, matches: ArrayLike) -> None: ...
+
+class Database:
+    def __init__(self, path: str) -> None: ...
+    @property
+    def path(self) -> str: ...
+    def read_cameras(self) -> List[ColmapCamera]: ...
+    def read_images(self) -> List[DatabaseImage]: ...
+    def read_keypoints(self, image_id: int) -> Array: ...  # N x 2
+    def read_two_view_geometries(self) -> List[TwoViewGeometry]: ...
+    def close(self) -> None: ...
+    @property
+    def closed(self) -> bool: ...
+    def __enter__(self) -> Database: ...
+    def __exit__(self, exc_type: object, exc_value: object, traceback: object) -> None: ...
+
+def pair_id(image_id1: int, image_id2: int) -> int: ...
+def images_of_pair_id(pair_id: int) -> Tuple[int, int]: ...
+def read_gravity_csv(path: str) -> Dict[str, Array]: ...
+def write_gravity_csv(gravity: Dict[str, ArrayLike], path: str) -> None: ...
+def gravity_of_images(gravity: Dict[str, ArrayLike], image_names: List[str]) -> Array: ...  # N x 3
+
+class MatchGraph:
+    def __init__(self, geometries: List[TwoViewGeometry]) -> None: ...
+    def num_matches(self, a: int, b: int) -> int: ...
+    def match(self, a: int, keypoint_a: int, b: int) -> Optional[int]: ...
+    def matches(self, a: int, b: int) -> npt.NDArray[np.uint32]: ...  # K x 2
+    def neighbors(self, image: int) -> npt.NDArray[np.uint32]: ...
+
+def three_view_tracks(graph: MatchGraph, images: ArrayLike) -> npt.NDArray[np.uint32]: ...  # N x 3
+def consecutive_triplets(images_by_name: ArrayLike) -> npt.NDArray[np.uint32]: ...  # M x 3
+def connected_triplets(graph: MatchGraph, images_by_name: ArrayLike, max_triplets: int) -> npt.NDArray[np.uint32]: ...
+
+class TripletResult:
+    images: List[DatabaseImage]  # 3, a copy
+    num_tracks: int
+    estimated: bool
+    estimate: ThreeViewEstimate
+    def __init__(
+        self,
+        images: Sequence[DatabaseImage],
+        num_tracks: int = 0,
+        estimated: bool = False,
+        estimate: Optional[ThreeViewEstimate] = None,
+    ) -> None: ...
+    @property
+    def verdict(self) -> str: ...
+
+def triplet_verdict(result: TripletResult) -> str: ...
+def format_triplet_csv(results: List[TripletResult], rotation_model: ThreeViewBundleAdjustmentOptions.RotationModel) -> str: ...
+def triplet_model(
+    cameras: List[ColmapCamera],
+    images: Sequence[DatabaseImage],
+    keypoints: Sequence[ArrayLike],
+    tracks: ArrayLike,
+    estimate: ThreeViewEstimate,
+) -> Reconstruction: ...
+
+class NViewInput:
+    reconstruction: NViewReconstruction
+    @property
+    def image_ids(self) -> npt.NDArray[np.uint32]: ...
+    @property
+    def point_ids(self) -> npt.NDArray[np.uint64]: ...
+
+def to_nview(model: Reconstruction, gravity: Dict[str, ArrayLike]) -> NViewInput: ...
+def from_nview(model: Reconstruction, input: NViewInput, refined: NViewReconstruction) -> Reconstruction: ...

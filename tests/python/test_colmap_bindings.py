@@ -344,9 +344,14 @@ def test_options_reprs_and_defaults():
 # --- the real database CI makes from KITTI frames (when there) ---------------------------------
 
 
-def kitti_database():
-    """The database and gravity CSV of ctest colmap_walkthrough_kitti, if it has run in this
-    build (or TRIGRAV_KITTI_DATABASE / TRIGRAV_KITTI_GRAVITY_CSV)."""
+def kitti_database(tmp_path):
+    """A snapshot (in tmp_path) of the database and gravity CSV of ctest colmap_walkthrough_kitti
+    (five KITTI 00 frames through the real COLMAP), if it has run in this build, or of
+    TRIGRAV_KITTI_DATABASE / TRIGRAV_KITTI_GRAVITY_CSV. The snapshot (SQLite's backup: a
+    consistent copy) keeps a walkthrough running meanwhile from changing the input under the
+    test; a database without verified matches yet is skipped."""
+    import shutil
+    import sqlite3
     build = os.path.dirname(os.path.dirname(os.path.abspath(trigrav.__file__)))
     database = os.environ.get("TRIGRAV_KITTI_DATABASE") or \
         os.path.join(build, "tests", "colmap_walkthrough_kitti", "database.db")
@@ -354,11 +359,24 @@ def kitti_database():
         os.path.join(os.path.dirname(database), "gravity.csv")
     if not (os.path.isfile(database) and os.path.isfile(gravity)):
         pytest.skip(f"no KITTI database at {database} (ctest colmap_walkthrough_kitti makes it)")
-    return database, gravity
+    copy, gravity_copy = str(tmp_path / "kitti.db"), str(tmp_path / "kitti_gravity.csv")
+    try:
+        with database_subset.connect_read_only(database) as source, \
+                sqlite3.connect(copy) as target:
+            source.backup(target)
+        shutil.copy(gravity, gravity_copy)
+        with trigrav.Database(copy) as db:
+            usable = len(db.read_two_view_geometries()) > 0
+        trigrav.read_gravity_csv(gravity_copy)
+    except (sqlite3.Error, OSError, ValueError) as error:
+        pytest.skip(f"the KITTI database at {database} is not usable now: {error}")
+    if not usable:
+        pytest.skip(f"the KITTI database at {database} has no verified matches (yet)")
+    return copy, gravity_copy
 
 
-def test_real_kitti_database():
-    path, gravity_csv = kitti_database()
+def test_real_kitti_database(tmp_path):
+    path, gravity_csv = kitti_database(tmp_path)
     gravity = trigrav.read_gravity_csv(gravity_csv)
     with trigrav.Database(path) as db:
         images = db.read_images()

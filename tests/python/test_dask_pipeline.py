@@ -255,7 +255,7 @@ def test_parts_are_reused_after_an_interrupted_run(scene, tmp_path, client):
 def test_real_kitti_database_equals_the_tool(tmp_path, client):
     """The database ctest colmap_walkthrough_kitti makes from KITTI frames, when it is there."""
     from test_colmap_bindings import kitti_database
-    database, gravity = kitti_database()
+    database, gravity = kitti_database(tmp_path)
     output = tmp_path / "kitti.csv"
     trigrav_pipeline.run(database, gravity, str(output), client=client, partition_size=1,
                          progress=False)

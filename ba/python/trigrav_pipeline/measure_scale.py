@@ -5,7 +5,8 @@
          --small_images images (consecutive triplets), against the single-process calls on the
          same triplets: estimate_partition over all of them (the pipeline's own loop, no Dask) and
          initialize_and_refine_batch(num_threads=1 and 2) on observations built beforehand. Times
-         are medians of --repeats runs; the cluster's start is timed apart. Peak memory: each
+         are medians of --repeats runs; the cluster's start (and the workers' import of the pipeline)
+         is timed apart. Peak memory: each
          worker process's ru_maxrss after its run (a fresh cluster per run).
   large: one run of --large_images images (100,000 triplets by default) on 2 worker processes:
          database size and writing time, the plan (client, before scheduling), the run, and the
@@ -39,6 +40,8 @@ def local_cluster(workers):
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                            dashboard_address=None, silence_logs=logging.ERROR)
     client = Client(cluster)
+    # The workers import the pipeline (and trigrav) once, as a long-running cluster has.
+    client.run(lambda: __import__("trigrav_pipeline.pipeline"))
     return cluster, client, time.perf_counter() - start
 
 

@@ -21,6 +21,9 @@ struct NViewSceneOptions {
   int max_track_length = 8;  // each point is seen by 2..max_track_length consecutive images
   double pixel_noise_px = 1.0;
   double gravity_noise_deg = 0.0;  // per-image pitch and roll error of the measured gravity
+  // Distance between consecutive images along the road (m); the weave's amplitude scales with it.
+  // Below 1: a slow car, low parallax (examples/experiments/gravity_pays.cc).
+  double step_m = 1.0;
 };
 
 struct NViewScene {
@@ -28,10 +31,10 @@ struct NViewScene {
   NViewReconstruction truth;
 };
 
-// KITTI-like driving (f = 719 px, 1241 x 376): image k 1 m further along the road, with a slow
-// left-right weave (yaw 5 deg sin(k / 15)) and a 1 deg pitch; points 4-60 m in front of a random
-// image, seen by the next images while in view. The world frame is then moved by a random rotation
-// and translation, so that gravity is not an axis of it.
+// KITTI-like driving (f = 719 px, 1241 x 376): image k step_m (1 m) further along the road, with a
+// slow left-right weave (yaw 5 deg sin(k / 15)) and a 1 deg pitch; points 4-60 m in front of a
+// random image, seen by the next images while in view. The world frame is then moved by a random
+// rotation and translation, so that gravity is not an axis of it.
 inline NViewScene MakeNViewScene(const NViewSceneOptions& options, std::uint64_t seed) {
   constexpr double kDegToRad = M_PI / 180.0;
   constexpr double f = 719.0, cx = 607.0, cy = 185.0, width = 1241.0, height = 376.0;
@@ -54,7 +57,8 @@ inline NViewScene MakeNViewScene(const NViewSceneOptions& options, std::uint64_t
         (Eigen::AngleAxisd(1.0 * kDegToRad, Eigen::Vector3d::UnitX()) *
          Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY()))
             .toRotationMatrix();
-    const Eigen::Vector3d center_aligned(3.0 * std::sin(k / 25.0), 0.0, 1.0 * k);
+    const Eigen::Vector3d center_aligned(3.0 * options.step_m * std::sin(k / 25.0), 0.0,
+                                         options.step_m * k);
     NViewImage image;
     image.camera_index = 0;
     image.cam_from_world.R = cam_from_aligned * world_from_aligned.transpose();

@@ -54,3 +54,12 @@ if(TARGET covariance_calibration)
 endif()
 
 include(${CMAKE_CURRENT_LIST_DIR}/bad_flag_tests.cmake)
+
+if(TARGET gravity_pays)
+  # 60-image drives (IMU 0.1 deg, short tracks, short baseline): every variant's row, no failed
+  # refinement.
+  add_test(NAME gravity_pays_quick COMMAND gravity_pays --quick --threads=1)
+  set_tests_properties(gravity_pays_quick PROPERTIES TIMEOUT 300
+    PASS_REGULAR_EXPRESSION "60 img, IMU 0.1 deg +start.*vision-only.*prior \\(IMU sigma\\).*default \\(verdict\\).*yaw-only.*tracks <= 3.*0.1 m steps.*total"
+    FAIL_REGULAR_EXPRESSION "FAILED")
+endif()

@@ -35,6 +35,7 @@
 
 #include "common/output_paths.h"
 #include "common/require_flag.h"
+#include "common/tool_flags.h"
 #include "trigrav/colmap/gravity_csv.h"
 
 DEFINE_string(poses_path,
@@ -137,9 +138,9 @@ void Run() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  gflags::SetUsageMessage(
-      "make_gravity_csv --poses_path=poses.txt --image_path=images --output_path=g.csv");
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
+  trigrav::examples::ParseToolFlags(
+      "make_gravity_csv --poses_path=poses.txt --image_path=images --output_path=g.csv", __FILE__,
+      &argc, &argv);
   RequireFlag(!FLAGS_poses_path.empty(), "--poses_path is required");
   RequireFlag(fs::is_regular_file(FLAGS_poses_path),
               "--poses_path=" + FLAGS_poses_path + " is not a file");

@@ -25,6 +25,7 @@
 #include "../common/thread_note.h"
 #include "common/output_paths.h"
 #include "common/require_flag.h"
+#include "common/tool_flags.h"
 #include "staged_file.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/ba/three_view_bundle_adjustment.h"
@@ -56,7 +57,7 @@ DEFINE_int32(min_tracks, 20, "Triplets with fewer three-view tracks are not esti
 DEFINE_string(solver,
               "3pt",
               "Minimal solver of the RANSAC (InitialSolverName: 3pt, 4pt, 5pt, ...).");
-DEFINE_double(max_error_px,
+DEFINE_double(threshold_px,
               2.0,
               "Inlier threshold (px): largest reprojection error over the three views "
               "(RansacOptions::max_error).");
@@ -89,13 +90,13 @@ trigrav::InitializeAndRefineOptions EstimatorOptions() {
   RequireFlag(
       trigrav::ParseInitialSolver(FLAGS_solver, &options.robust.solver),
       "unknown --solver=" + FLAGS_solver + " (one of " + trigrav::InitialSolverNames() + ")");
-  options.robust.ransac.max_error = FLAGS_max_error_px;
+  options.robust.ransac.max_error = FLAGS_threshold_px;
   options.robust.check_gravity_after_success = FLAGS_check_gravity;
   auto& ba = options.bundle_adjustment;
   ba.rotation_model =
       FLAGS_rotation_model == "yaw_only" ? RotationModel::kYawOnly : RotationModel::kGravityPrior;
   ba.gravity_sigma_deg = FLAGS_gravity_sigma_deg;
-  ba.loss_scale_px = FLAGS_max_error_px;
+  ba.loss_scale_px = FLAGS_threshold_px;
   trigrav::ParseEngine(FLAGS_engine, &ba.engine);  // checked by CheckFlags()
   ba.compute_covariance = true;
   options.Check();
@@ -113,8 +114,8 @@ void CheckFlags() {
               "--triplets must be consecutive or connected");
   RequireFlag(FLAGS_max_triplets >= 0, "--max_triplets must be >= 0");
   RequireFlag(FLAGS_min_tracks >= 3, "--min_tracks must be >= 3");
-  RequireFlag(FLAGS_max_error_px > 0.0 && std::isfinite(FLAGS_max_error_px),
-              "--max_error_px must be positive and finite");
+  RequireFlag(FLAGS_threshold_px > 0.0 && std::isfinite(FLAGS_threshold_px),
+              "--threshold_px must be positive and finite");
   RequireFlag(FLAGS_rotation_model == "yaw_only" || FLAGS_rotation_model == "gravity_prior",
               "--rotation_model must be yaw_only or gravity_prior");
   RequireFlag(FLAGS_gravity_sigma_deg > 0.0 && std::isfinite(FLAGS_gravity_sigma_deg),
@@ -254,10 +255,10 @@ int Run() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  gflags::SetUsageMessage(
+  trigrav::examples::ParseToolFlags(
       "triplet_initializer --database_path=db.db --gravity_csv=g.csv --output_csv=triplets.csv "
-      "--output_model_path=seed");
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
+      "--output_model_path=seed",
+      __FILE__, &argc, &argv);
   CheckFlags();
   try {
     return Run();

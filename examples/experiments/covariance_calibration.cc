@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "common/require_flag.h"
+#include "common/tool_flags.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/ba/three_view_covariance.h"
 #include "trigrav/evaluation/statistics.h"
@@ -197,8 +198,8 @@ void TimeCovariance(RotationModel model, int num_points, int num_problems) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  gflags::SetUsageMessage("Predicted against empirical sigmas of the refined pose.");
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
+  trigrav::examples::ParseToolFlags("Predicted against empirical sigmas of the refined pose.",
+                                    __FILE__, &argc, &argv);
   using trigrav::examples::RequireFlag;
   RequireFlag(FLAGS_scenes > 0, "--scenes must be positive");
   RequireFlag(FLAGS_points >= 20, "--points must be >= 20");

@@ -15,7 +15,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <map>
 #include <random>
 #include <string>
@@ -23,6 +22,8 @@
 
 #include "common/pooled_errors.h"
 #include "common/require_flag.h"
+#include "common/tool_flags.h"
+#include "gravity_solver.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"
@@ -52,14 +53,8 @@ DEFINE_double(focal_px, 500.0, "Focal length in pixels (640 x 480 image).");
 namespace {
 
 using trigrav::ThreeViewPose;
-using Rays = std::vector<Eigen::Vector3d>;
-using GravitySolver = std::function<int(const Rays&,
-                                        const Rays&,
-                                        const Rays&,
-                                        const Eigen::Vector3d&,
-                                        const Eigen::Vector3d&,
-                                        const Eigen::Vector3d&,
-                                        std::vector<ThreeViewPose>*)>;
+using trigrav::testing_utils::GravitySolver;
+using trigrav::testing_utils::Rays;
 
 GravitySolver Trifocal4pt(const trigrav::Trifocal4ptOptions& options) {
   return [options](const Rays& x1, const Rays& x2, const Rays& x3, const Eigen::Vector3d& g1,
@@ -112,8 +107,8 @@ const std::map<std::string, GravitySolver>& Solvers() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  gflags::SetUsageMessage("Runs a gravity-aware trifocal solver on synthetic triplets.");
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
+  trigrav::examples::ParseToolFlags("Runs a gravity-aware trifocal solver on synthetic triplets.",
+                                    __FILE__, &argc, &argv);
   google::InitGoogleLogging(argv[0]);
   using trigrav::examples::RequireFlag;
   const auto solver = Solvers().find(FLAGS_solver);

@@ -44,6 +44,7 @@
 #include "common/output_paths.h"
 #include "common/paper_protocol.h"
 #include "common/require_flag.h"
+#include "common/tool_flags.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"
@@ -383,8 +384,9 @@ void RunTiming() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  gflags::SetUsageMessage("The paper's synthetic experiments on trigrav's solvers; writes CSVs.");
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
+  trigrav::examples::ParseToolFlags(
+      "The paper's synthetic experiments on trigrav's solvers; writes CSVs.", __FILE__, &argc,
+      &argv);
   google::InitGoogleLogging(argv[0]);
   using trigrav::examples::RequireFlag;
   RequireFlag(FLAGS_threads >= 1 && FLAGS_threads <= 256, "--threads must be in [1, 256]");

@@ -12,13 +12,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <limits>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "common/require_flag.h"
+#include "common/tool_flags.h"
+#include "gravity_solver.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
 #include "trigrav/evaluation/synthetic_scene.h"
@@ -36,21 +37,15 @@ DEFINE_double(found_deg,
 namespace {
 
 using trigrav::ThreeViewPose;
-using Rays = std::vector<Eigen::Vector3d>;
-using Solver = std::function<int(const Rays&,
-                                 const Rays&,
-                                 const Rays&,
-                                 const Eigen::Vector3d&,
-                                 const Eigen::Vector3d&,
-                                 const Eigen::Vector3d&,
-                                 std::vector<ThreeViewPose>*)>;
+using trigrav::testing_utils::GravitySolver;
+using trigrav::testing_utils::Rays;
 
 constexpr double kNoSolutionDeg = 180.0;
 
 struct Statistics {
   std::string name;
   int num_points = 0;
-  Solver solve;
+  GravitySolver solve;
   std::vector<double> rotation_first, translation_first, rotation_oracle, translation_oracle;
   int found = 0, found_first = 0, no_solution = 0;
   long long candidates = 0;
@@ -100,8 +95,8 @@ void RunScene(const trigrav::SyntheticScene& scene, Statistics* stats) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  gflags::SetUsageMessage("Noise-free stability of the 3-point and 4-point trifocal solvers.");
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
+  trigrav::examples::ParseToolFlags(
+      "Noise-free stability of the 3-point and 4-point trifocal solvers.", __FILE__, &argc, &argv);
   using trigrav::examples::RequireFlag;
   RequireFlag(FLAGS_trials > 0, "--trials must be positive");
   RequireFlag(FLAGS_noise_px >= 0.0 && std::isfinite(FLAGS_noise_px),

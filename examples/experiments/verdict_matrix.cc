@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "common/require_flag.h"
+#include "common/tool_flags.h"
 #include "input_mistakes.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/evaluation/pose_errors.h"
@@ -158,8 +159,8 @@ void PrintPureOutliers() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  gflags::SetUsageMessage("What InitializeAndRefine says to common input mistakes.");
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
+  trigrav::examples::ParseToolFlags("What InitializeAndRefine says to common input mistakes.",
+                                    __FILE__, &argc, &argv);
   using trigrav::examples::RequireFlag;
   RequireFlag(FLAGS_scenes > 0, "--scenes must be positive");
   RequireFlag(FLAGS_points >= 20, "--points must be >= 20");

@@ -45,6 +45,7 @@
 #include "common/paper_protocol.h"
 #include "common/pooled_errors.h"
 #include "common/require_flag.h"
+#include "common/tool_flags.h"
 #include "trigrav/ba/initialize_and_refine.h"
 #include "trigrav/ba/three_view_bundle_adjustment.h"
 #include "trigrav/evaluation/pose_errors.h"
@@ -524,9 +525,9 @@ void RunSample20(std::ofstream* csv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  gflags::SetUsageMessage(
-      "InitializeAndRefine on synthetic triplets: raw (RANSAC) vs refined errors, inliers, time.");
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
+  trigrav::examples::ParseToolFlags(
+      "InitializeAndRefine on synthetic triplets: raw (RANSAC) vs refined errors, inliers, time.",
+      __FILE__, &argc, &argv);
   google::InitGoogleLogging(argv[0]);
   const Experiment experiment = ParseExperiment();
   using E = Experiment;

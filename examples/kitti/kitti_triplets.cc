@@ -30,6 +30,7 @@
 
 #include "common/output_paths.h"
 #include "common/require_flag.h"
+#include "common/tool_flags.h"
 #include "kitti_methods.h"
 #include "kitti_report.h"
 #include "kitti_sequence.h"
@@ -290,10 +291,10 @@ bool WriteFramesCsv(const std::string& path,
 }  // namespace
 
 int main(int argc, char** argv) {
-  gflags::SetUsageMessage(
+  trigrav::examples::ParseToolFlags(
       "KITTI three-view evaluation: kitti_triplets --kitti_dir=DIR --sequence=00 "
-      "--output_dir=OUT");
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
+      "--output_dir=OUT",
+      __FILE__, &argc, &argv);
   ValidateFlags();
 
   std::vector<kitti::Method> methods = TrigravMethodsFromFlags();

@@ -34,6 +34,7 @@
 #include "common/pooled_errors.h"
 #include "common/require_flag.h"
 #include "common/robust_benchmark_scenes.h"
+#include "common/tool_flags.h"
 #include "peer_estimators.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
@@ -369,8 +370,8 @@ void RunAccuracy() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  gflags::SetUsageMessage("trigrav against OpenCV's and OpenGV's five-point RANSAC, one run.");
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
+  trigrav::examples::ParseToolFlags(
+      "trigrav against OpenCV's and OpenGV's five-point RANSAC, one run.", __FILE__, &argc, &argv);
   using trigrav::examples::RequireFlag;
   RequireFlag(FLAGS_solver_problems > 0, "--solver_problems must be positive");
   RequireFlag(FLAGS_solver_passes > 0, "--solver_passes must be positive");

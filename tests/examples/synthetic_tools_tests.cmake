@@ -54,6 +54,8 @@ if(TARGET covariance_calibration)
 endif()
 
 include(${CMAKE_CURRENT_LIST_DIR}/bad_flag_tests.cmake)
+# The help of every tool, also the COLMAP, KITTI and peer tools (all targets exist here).
+include(${CMAKE_CURRENT_LIST_DIR}/help_tests.cmake)
 
 if(TARGET gravity_pays)
   # 60-image drives (IMU 0.1 deg, short tracks, short baseline): every variant's row, no failed

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "gravity_solver.h"
 #include "solver_test_utils.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
@@ -20,16 +21,10 @@
 namespace trigrav {
 namespace {
 
-using Rays = std::vector<Eigen::Vector3d>;
+using testing_utils::GravitySolver;
+using testing_utils::Rays;
 using AlignedSolver =
     std::function<int(const Rays&, const Rays&, const Rays&, std::vector<ThreeViewPose>*)>;
-using GravitySolver = std::function<int(const Rays&,
-                                        const Rays&,
-                                        const Rays&,
-                                        const Eigen::Vector3d&,
-                                        const Eigen::Vector3d&,
-                                        const Eigen::Vector3d&,
-                                        std::vector<ThreeViewPose>*)>;
 
 struct NamedSolver {
   const char* name;

@@ -24,10 +24,12 @@ using Summary = NViewBundleAdjustmentSummary;
 void BindOptions(py::module_& m) {
   // The enums are those of the three-view options (one C++ type, bound once):
   // ThreeViewBundleAdjustmentOptions.RotationModel, .LossType, .LinearSolverType.
-  OptionsClass<Options>(
+  OptionsClass<Options> options(
       m, "NViewBundleAdjustmentOptions",
       "N-view gravity-aware bundle adjustment (refine_with_gravity): rotation model, loss, "
-      "sigmas, Ceres settings. The enums are ThreeViewBundleAdjustmentOptions'.")
+      "sigmas, Ceres settings, the gravity verdict. The enums are "
+      "ThreeViewBundleAdjustmentOptions'.");
+  options
       .Field("rotation_model", &Options::rotation_model,
              "ThreeViewBundleAdjustmentOptions.RotationModel (YAW_ONLY): YAW_ONLY takes each "
              "image's pitch and roll from its gravity, GRAVITY_PRIOR adds a prior of sigma "
@@ -47,7 +49,21 @@ void BindOptions(py::module_& m) {
       .Field("function_tolerance", &Options::function_tolerance, "(1e-6)")
       .Field("gradient_tolerance", &Options::gradient_tolerance, "(1e-10)")
       .Field("parameter_tolerance", &Options::parameter_tolerance, "(1e-8)")
-      .Finish(&Options::Check);
+      .Field("check_gravity", &Options::check_gravity,
+             "the gravity verdict: a solve in which the images dominate measures each image's "
+             "gravity disagreement; inconsistent images lose their gravity, yaw-only is kept "
+             "only when the data accept exact tilts (True)")
+      .Field("gravity_sigma_from_data", &Options::gravity_sigma_from_data,
+             "use the IMU sigma the verdict estimates instead of gravity_sigma_deg (True)")
+      .Field("max_gravity_disagreement_sigmas", &Options::max_gravity_disagreement_sigmas,
+             "an image whose disagreement exceeds this many estimated sigmas loses its gravity "
+             "(5)");
+  options.Finish(&Options::Check);
+  options.cls().attr("VERDICT_GRAVITY_SIGMA_DEG") = Options::kVerdictGravitySigmaDeg;
+  options.cls().attr("MIN_GRAVITY_DISAGREEMENT_BOUND_DEG") =
+      Options::kMinGravityDisagreementBoundDeg;
+  options.cls().attr("MIN_ESTIMATED_GRAVITY_SIGMA_DEG") = Options::kMinEstimatedGravitySigmaDeg;
+  options.cls().attr("YAW_ONLY_TEST_SIGMAS") = Options::kYawOnlyTestSigmas;
 
   // Its Check() needs the reconstruction: refine_with_gravity checks the config.
   OptionsClass<Config>(m, "NViewBundleAdjustmentConfig",
@@ -60,6 +76,9 @@ void BindOptions(py::module_& m) {
              "reference (-1)")
       .Field("constant_images", &Config::constant_images,
              "images whose pose is held constant (list of indices) ([])")
+      .Field("images_without_gravity", &Config::images_without_gravity,
+             "images whose measured gravity is left out (GRAVITY_PRIOR only); refine_with_gravity "
+             "adds those its verdict finds inconsistent ([])")
       .Field("constant_points", &Config::constant_points, "motion-only refinement (False)")
       .Finish(nullptr);
 }
@@ -254,7 +273,27 @@ void BindSummary(py::module_& m) {
           },
           "per image (with compute_covariance and success): 4 x 4 (YAW_ONLY: yaw, C) or 6 x 6 "
           "(GRAVITY_PRIOR: omega, C); an empty list otherwise")
-      .def_readonly("solve_s", &Summary::solve_s, "wall-clock seconds of ceres::Solve")
+      .def_property_readonly(
+          "observations_per_image",
+          [](const Summary& s) { return VectorToArray(s.observations_per_image); },
+          "(N,) int32: each image's observations in the problem")
+      .def_readonly("rotation_model", &Summary::rotation_model,
+                    "the ThreeViewBundleAdjustmentOptions.RotationModel solved")
+      .def_readonly("gravity_sigma_deg", &Summary::gravity_sigma_deg,
+                    "the IMU sigma the gravity priors used (GRAVITY_PRIOR)")
+      .def_property_readonly(
+          "gravity_disagreement_deg",
+          [](const Summary& s) { return VectorToArray(s.gravity_disagreement_deg); },
+          "(N,) per image: angle between its measured gravity and the one the images imply "
+          "(deg); empty without the verdict")
+      .def_property_readonly(
+          "gravity_used", [](const Summary& s) { return MaskToArray(s.gravity_used); },
+          "(N,) bool per image: its gravity took part; empty without the verdict")
+      .def_readonly("estimated_gravity_sigma_deg", &Summary::estimated_gravity_sigma_deg,
+                    "the IMU sigma estimated from the consistent images (deg); NaN without the "
+                    "verdict")
+      .def_readonly("solve_s", &Summary::solve_s,
+                    "wall-clock seconds of ceres::Solve (both solves of the verdict)")
       .def_readonly("covariance_s", &Summary::covariance_s)
       .def_property_readonly("initial_cost", &Summary::InitialCost)
       .def_property_readonly("final_cost", &Summary::FinalCost)
@@ -292,12 +331,27 @@ void BindSummary(py::module_& m) {
       "solver iteration.");
 }
 
+void BindUpright(py::module_& m) {
+  m.def(
+      "upright_reconstruction",
+      [](const NViewReconstruction& reconstruction, const py::object& gravity_in_world) {
+        const Eigen::Vector3d g = ToVector3(gravity_in_world, "gravity_in_world");
+        py::gil_scoped_release release;
+        return UprightReconstruction(reconstruction, g);
+      },
+      py::arg("reconstruction"), py::arg("gravity_in_world"),
+      "The reconstruction rotated about the origin so that +y is gravity_in_world (down; e.g. "
+      "summary.gravity_in_world) and +z the horizontal part of the old +z (UprightReconstruction). "
+      "ValueError for a zero or non-finite gravity.");
+}
+
 }  // namespace
 
 void BindNView(py::module_& m) {
   BindOptions(m);
   BindReconstruction(m);
   BindSummary(m);
+  BindUpright(m);
 }
 
 }  // namespace trigrav::python

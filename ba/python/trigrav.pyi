@@ -581,6 +581,10 @@ def three_view_errors(observations: ThreeViewObservations, pose: ThreeViewPose) 
 
 class NViewBundleAdjustmentOptions:
     """The enums are ThreeViewBundleAdjustmentOptions' (one C++ type)."""
+    VERDICT_GRAVITY_SIGMA_DEG: ClassVar[float]  # value = 10.0
+    MIN_GRAVITY_DISAGREEMENT_BOUND_DEG: ClassVar[float]  # value = 0.02
+    MIN_ESTIMATED_GRAVITY_SIGMA_DEG: ClassVar[float]  # value = 0.005
+    YAW_ONLY_TEST_SIGMAS: ClassVar[float]  # value = 4.0
     rotation_model: ThreeViewBundleAdjustmentOptions.RotationModel
     loss: ThreeViewBundleAdjustmentOptions.LossType
     loss_scale_px: float
@@ -593,6 +597,9 @@ class NViewBundleAdjustmentOptions:
     function_tolerance: float
     gradient_tolerance: float
     parameter_tolerance: float
+    check_gravity: bool
+    gravity_sigma_from_data: bool
+    max_gravity_disagreement_sigmas: float
     def __init__(
         self,
         *,
@@ -608,12 +615,16 @@ class NViewBundleAdjustmentOptions:
         function_tolerance: float = 1e-06,
         gradient_tolerance: float = 1e-10,
         parameter_tolerance: float = 1e-08,
+        check_gravity: bool = True,
+        gravity_sigma_from_data: bool = True,
+        max_gravity_disagreement_sigmas: float = 5.0,
     ) -> None: ...
 
 class NViewBundleAdjustmentConfig:
     reference_image: int
     scale_image: int
     constant_images: List[int]
+    images_without_gravity: List[int]
     constant_points: bool
     def __init__(
         self,
@@ -621,6 +632,7 @@ class NViewBundleAdjustmentConfig:
         reference_image: int = 0,
         scale_image: int = -1,
         constant_images: List[int] = [],
+        images_without_gravity: List[int] = [],
         constant_points: bool = False,
     ) -> None: ...
 
@@ -682,6 +694,18 @@ class NViewBundleAdjustmentSummary:
     @property
     def covariances(self) -> List[Array]: ...  # N of 4 x 4 or 6 x 6, or []
     @property
+    def observations_per_image(self) -> npt.NDArray[np.int32]: ...
+    @property
+    def rotation_model(self) -> ThreeViewBundleAdjustmentOptions.RotationModel: ...
+    @property
+    def gravity_sigma_deg(self) -> float: ...
+    @property
+    def gravity_disagreement_deg(self) -> Array: ...  # (N,), empty without the verdict
+    @property
+    def gravity_used(self) -> Mask: ...  # (N,), empty without the verdict
+    @property
+    def estimated_gravity_sigma_deg(self) -> float: ...
+    @property
     def solve_s(self) -> float: ...
     @property
     def covariance_s(self) -> float: ...
@@ -699,6 +723,7 @@ def refine_with_gravity(
     config: NViewBundleAdjustmentConfig = NViewBundleAdjustmentConfig(),
     options: NViewBundleAdjustmentOptions = NViewBundleAdjustmentOptions(),
 ) -> Tuple[NViewBundleAdjustmentSummary, NViewReconstruction]: ...
+def upright_reconstruction(reconstruction: NViewReconstruction, gravity_in_world: ArrayLike) -> NViewReconstruction: ...
 
 # --- COLMAP: models, database, gravity CSV, triplets (bind_colmap.cc; built with trigrav::colmap)
 

@@ -264,29 +264,35 @@ void NViewBundleAdjuster::Build() {
   // First any gravity-aligned frame; its yaw is set below, once the scale image is known.
   set_parameters(GravityAlignmentFromGravity(gravity_in_world_));
 
-  // Observations of points in front of their camera; points with >= 2 of them.
-  std::vector<char> in_front(input_.observations.size(), 0);
-  std::vector<int> count(num_points, 0);
-  for (std::size_t i = 0; i < input_.observations.size(); ++i) {
-    const NViewObservation& o = input_.observations[i];
-    const Eigen::Vector3d x_cam =
-        rotations[o.image_index] * (points_[o.point_index] - centers_[o.image_index]);
-    if (x_cam.z() > 0.0) {
-      in_front[i] = 1;
-      ++count[o.point_index];
-    }
-  }
-  point_used_.assign(num_points, 0);
-  for (int p = 0; p < num_points; ++p) point_used_[p] = count[p] >= 2;
-  used_observations_.clear();
+  // Observations of points in front of their camera at the current parameters; points with >= 2
+  // of them. Run again once W's yaw is final: a yaw-only start with a gravity far from the image's
+  // pose (a flipped sign) has a degenerate best-fitting yaw that may differ between the frames.
   std::vector<char> image_used(num_images, 0);
-  for (std::size_t i = 0; i < input_.observations.size(); ++i) {
-    const NViewObservation& o = input_.observations[i];
-    if (in_front[i] && point_used_[o.point_index]) {
-      used_observations_.push_back(static_cast<int>(i));
-      image_used[o.image_index] = 1;
+  auto select_observations = [&]() {
+    std::vector<char> in_front(input_.observations.size(), 0);
+    std::vector<int> count(num_points, 0);
+    for (std::size_t i = 0; i < input_.observations.size(); ++i) {
+      const NViewObservation& o = input_.observations[i];
+      const Eigen::Vector3d x_cam =
+          rotations[o.image_index] * (points_[o.point_index] - centers_[o.image_index]);
+      if (x_cam.z() > 0.0) {
+        in_front[i] = 1;
+        ++count[o.point_index];
+      }
     }
-  }
+    point_used_.assign(num_points, 0);
+    for (int p = 0; p < num_points; ++p) point_used_[p] = count[p] >= 2;
+    used_observations_.clear();
+    image_used.assign(num_images, 0);
+    for (std::size_t i = 0; i < input_.observations.size(); ++i) {
+      const NViewObservation& o = input_.observations[i];
+      if (in_front[i] && point_used_[o.point_index]) {
+        used_observations_.push_back(static_cast<int>(i));
+        image_used[o.image_index] = 1;
+      }
+    }
+  };
+  select_observations();
 
   // Gauge (ba/derivations.md section 14.2).
   const int reference = config_.reference_image;
@@ -314,6 +320,13 @@ void NViewBundleAdjuster::Build() {
   const Eigen::Vector3d first_baseline = centers_[scale_image_] - centers_[reference];
   const double heading = std::atan2(first_baseline.x(), first_baseline.z());
   set_parameters(RotationAboutY(-heading) * world_aligned_from_world_);
+  select_observations();
+  if (!image_used[reference] || !image_used[scale_image_]) {
+    message_ =
+        "the reference or the scale image has no usable observation in the gravity-aligned "
+        "frame (its gravity contradicts its pose)";
+    return;
+  }
   const Eigen::Vector3d baseline = centers_[scale_image_] - centers_[reference];
   int scale_axis = 0;
   baseline.cwiseAbs().maxCoeff(&scale_axis);  // y or z
@@ -753,6 +766,27 @@ NViewReconstruction UprightReconstruction(const NViewReconstruction& reconstruct
   }
   for (Eigen::Vector3d& point : out.points_in_world) point = upright_from_world * point;
   return out;
+}
+
+std::vector<double> ReprojectionRmsPx(const NViewReconstruction& reconstruction) {
+  reconstruction.Check();
+  const std::size_t num_images = reconstruction.images.size();
+  std::vector<double> sum(num_images, 0.0);
+  std::vector<int> count(num_images, 0);
+  for (const NViewObservation& o : reconstruction.observations) {
+    const NViewImage& image = reconstruction.images[o.image_index];
+    const Eigen::Vector3d x_cam =
+        image.cam_from_world.Apply(reconstruction.points_in_world[o.point_index]);
+    if (!(x_cam.z() > 0.0)) continue;
+    sum[o.image_index] +=
+        (reconstruction.cameras[image.camera_index].Project(x_cam) - o.pixel).squaredNorm();
+    ++count[o.image_index];
+  }
+  std::vector<double> rms(num_images, std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t k = 0; k < num_images; ++k) {
+    if (count[k] > 0) rms[k] = std::sqrt(sum[k] / count[k]);
+  }
+  return rms;
 }
 
 }  // namespace trigrav

@@ -232,7 +232,9 @@ TEST(QuietTest, ControlCeresWarnsAboutNumThreadsAboveTheCoreCount) {
   const SyntheticScene scene = GenerateSyntheticScene(SyntheticSceneOptions(), &rng);
   ThreeViewBundleAdjustmentOptions options;
   options.engine = ThreeViewBundleAdjustmentOptions::Engine::kCeres;
-  ThreeViewBundleAdjuster adjuster(ToObservations(scene), {}, options);
+  const ThreeViewObservations observations =
+      ToObservations(scene);  // The adjuster keeps a reference.
+  ThreeViewBundleAdjuster adjuster(observations, {}, options);
   ASSERT_TRUE(adjuster.Build(scene.ground_truth)) << adjuster.message();
   ceres::Solver::Options solver_options = options.CeresSolverOptions();
   solver_options.num_threads = kManyThreads;

@@ -48,10 +48,10 @@ trigrav_add_bad_flag_test(triplet_initializer_negative_max_triplets triplet_init
   "--max_triplets must be >= 0" ${initializer_ok} --max_triplets=-1)
 trigrav_add_bad_flag_test(triplet_initializer_two_tracks triplet_initializer
   "--min_tracks must be >= 3" ${initializer_ok} --min_tracks=2)
-trigrav_add_bad_flag_test(triplet_initializer_nan_error triplet_initializer
-  "--max_error_px ${positive}" ${initializer_ok} --max_error_px=nan)
-trigrav_add_bad_flag_test(triplet_initializer_zero_error triplet_initializer
-  "--max_error_px ${positive}" ${initializer_ok} --max_error_px=0)
+trigrav_add_bad_flag_test(triplet_initializer_nan_threshold triplet_initializer
+  "--threshold_px ${positive}" ${initializer_ok} --threshold_px=nan)
+trigrav_add_bad_flag_test(triplet_initializer_zero_threshold triplet_initializer
+  "--threshold_px ${positive}" ${initializer_ok} --threshold_px=0)
 trigrav_add_bad_flag_test(triplet_initializer_unknown_rotation_model triplet_initializer
   "--rotation_model must be yaw_only or gravity_prior" ${initializer_ok} --rotation_model=free)
 trigrav_add_bad_flag_test(triplet_initializer_zero_gravity_sigma triplet_initializer
@@ -78,7 +78,12 @@ trigrav_add_bad_flag_test(gravity_bundle_adjuster_unknown_format gravity_bundle_
 trigrav_add_bad_flag_test(gravity_bundle_adjuster_unknown_rotation_model gravity_bundle_adjuster
   "--rotation_model must be yaw_only or gravity_prior" ${adjuster_ok} --rotation_model=free)
 trigrav_add_bad_flag_test(gravity_bundle_adjuster_nan_gravity_sigma gravity_bundle_adjuster
-  "--gravity_sigma_deg ${positive}" ${adjuster_ok} --gravity_sigma_deg=nan)
+  "--gravity_sigma_deg must be >= 0 and finite" ${adjuster_ok} --gravity_sigma_deg=nan)
+trigrav_add_bad_flag_test(gravity_bundle_adjuster_negative_gravity_sigma gravity_bundle_adjuster
+  "--gravity_sigma_deg must be >= 0 and finite" ${adjuster_ok} --gravity_sigma_deg=-1)
+trigrav_add_bad_flag_test(gravity_bundle_adjuster_small_rms_growth gravity_bundle_adjuster
+  "--max_rms_growth must be 0 \\(off\\) or a finite factor >= 1" ${adjuster_ok}
+  --max_rms_growth=0.5)
 trigrav_add_bad_flag_test(gravity_bundle_adjuster_unknown_loss gravity_bundle_adjuster
   "--loss must be huber, cauchy or none" ${adjuster_ok} --loss=l1)
 trigrav_add_bad_flag_test(gravity_bundle_adjuster_zero_loss_scale gravity_bundle_adjuster

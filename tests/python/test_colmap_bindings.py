@@ -306,6 +306,40 @@ def test_refine_with_gravity_on_a_model():
     np.testing.assert_array_equal(reconstruction.points_in_world, perturbed)  # input unchanged
 
 
+def test_gravity_verdict_names_a_flipped_gravity_and_upright():
+    model, gravity, _ = make_model(num_images=6)
+    gravity["im02.png"] = -gravity["im02.png"]
+    nview_input = trigrav.to_nview(model, gravity)
+    summary, refined = trigrav.refine_with_gravity(
+        nview_input.reconstruction, options=trigrav.NViewBundleAdjustmentOptions(
+            rotation_model=trigrav.ThreeViewBundleAdjustmentOptions.RotationModel.GRAVITY_PRIOR))
+    assert summary.success, summary.message
+    assert summary.gravity_disagreement_deg.shape == (6,)
+    assert summary.gravity_disagreement_deg[2] > 170
+    np.testing.assert_array_equal(summary.gravity_used, [True, True, False, True, True, True])
+    assert summary.gravity_used.dtype == np.bool_
+    assert "im02" in summary.message or "2" in summary.message, summary.message
+    assert summary.estimated_gravity_sigma_deg < 0.1
+    assert summary.observations_per_image.tolist() == [60] * 6
+    assert summary.rotation_model == \
+        trigrav.ThreeViewBundleAdjustmentOptions.RotationModel.GRAVITY_PRIOR
+    assert (summary.residual_rms_px < 0.6).all()
+    # Upright: +y along the world's gravity; every consistent image's gravity points along it.
+    upright = trigrav.upright_reconstruction(refined, summary.gravity_in_world)
+    for k, image in enumerate(upright.images):
+        if k != 2:
+            g = image.cam_from_world.R.T @ upright.gravity_in_cam[k]
+            np.testing.assert_allclose(g / np.linalg.norm(g), [0, 1, 0], atol=1e-3)
+    with pytest.raises(ValueError):
+        trigrav.upright_reconstruction(refined, [0, 0, 0])
+    # Without the verdict the arrays are empty.
+    summary, _ = trigrav.refine_with_gravity(
+        trigrav.to_nview(*make_model()[:2]).reconstruction,
+        options=trigrav.NViewBundleAdjustmentOptions(check_gravity=False))
+    assert summary.gravity_disagreement_deg.shape == (0,)
+    assert math.isnan(summary.estimated_gravity_sigma_deg)
+
+
 def test_nview_errors():
     model, gravity, _ = make_model()
     del gravity["im03.png"]
@@ -339,6 +373,10 @@ def test_options_reprs_and_defaults():
     assert repr(options).startswith("NViewBundleAdjustmentOptions(rotation_model=")
     config = trigrav.NViewBundleAdjustmentConfig(constant_images=[1, 2])
     assert config.constant_images == [1, 2] and config.scale_image == -1
+    assert options.check_gravity and options.gravity_sigma_from_data
+    assert trigrav.NViewBundleAdjustmentOptions.VERDICT_GRAVITY_SIGMA_DEG == 10.0
+    with pytest.raises(ValueError, match="max_gravity_disagreement_sigmas"):
+        trigrav.NViewBundleAdjustmentOptions(max_gravity_disagreement_sigmas=0)
 
 
 # --- the real database CI makes from KITTI frames (when there) ---------------------------------

@@ -242,13 +242,17 @@ def estimate_partition(database_path, partition, options, delay_s=0.0, keep_resu
 
 
 def write_atomically(path, text):
-    """Writes `text` to a temporary sibling, flushes it to the disk, renames it to `path`."""
+    """Writes `text` (a string, or a function writing to the file it is given) to a temporary
+    sibling, flushes it to the disk, renames it to `path`."""
     folder = os.path.dirname(os.path.abspath(path))
     handle, temporary = tempfile.mkstemp(prefix=os.path.basename(path) + ".", suffix=".tmp",
                                          dir=folder)
     try:
         with os.fdopen(handle, "w") as f:
-            f.write(text)
+            if callable(text):
+                text(f)
+            else:
+                f.write(text)
             f.flush()
             os.fsync(f.fileno())
         os.replace(temporary, path)
@@ -307,17 +311,20 @@ class PartStore:
             return json.load(f)
 
     def merge(self, output_csv):
-        """The parts in order as one CSV (atomically); then the parts folder is removed."""
-        header, rows = None, []
-        for index in range(self.num_partitions):
-            with open(self.path(index)) as f:
-                part_header, part_rows = split_csv(f.read())
-            if header is None:
-                header = part_header
-            elif part_header != header:
-                raise ValueError(f"{self.path(index)}: a different CSV header")
-            rows.append(part_rows)
-        write_atomically(output_csv, header + "".join(rows))
+        """The parts in order as one CSV (atomically; one part in memory at a time); then the
+        parts folder is removed."""
+        def write(out):
+            header = None
+            for index in range(self.num_partitions):
+                with open(self.path(index)) as f:
+                    part_header, part_rows = split_csv(f.read())
+                if header is None:
+                    header = part_header
+                    out.write(header)
+                elif part_header != header:
+                    raise ValueError(f"{self.path(index)}: a different CSV header")
+                out.write(part_rows)
+        write_atomically(output_csv, write)
         shutil.rmtree(self.folder)
 
 
@@ -400,6 +407,9 @@ def run(database_path, gravity_csv, output_csv, options=None, *, client=None, sc
                 for future in as_completed(futures):
                     text, summary = future.result()
                     store.write(index_of[future.key], text, summary)
+                    # Written: the scheduler may forget it (neither client nor worker keeps it).
+                    future.release()
+                    del text
                     pids.add(summary["pid"])
                     if bar is not None:
                         bar.update(summary["num_triplets"])

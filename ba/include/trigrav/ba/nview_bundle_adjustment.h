@@ -228,6 +228,10 @@ class NViewBundleAdjuster {
   NViewBundleAdjuster(const NViewReconstruction& input,
                       const NViewBundleAdjustmentConfig& config,
                       const NViewBundleAdjustmentOptions& options);
+  // A temporary would dangle: the adjuster keeps a reference.
+  NViewBundleAdjuster(NViewReconstruction&& input,
+                      const NViewBundleAdjustmentConfig& config,
+                      const NViewBundleAdjustmentOptions& options) = delete;
   ~NViewBundleAdjuster();
   NViewBundleAdjuster(const NViewBundleAdjuster&) = delete;
   NViewBundleAdjuster& operator=(const NViewBundleAdjuster&) = delete;
@@ -308,6 +312,12 @@ NViewBundleAdjustmentSummary RefineWithGravity(const NViewReconstruction& input,
 // views of the points do not. Throws std::invalid_argument for a zero or non-finite gravity.
 NViewReconstruction UprightReconstruction(const NViewReconstruction& reconstruction,
                                           const Eigen::Vector3d& gravity_in_world);
+
+// Per image: the RMS (px) of |project(R_k (X - C_k)) - pixel| over its observations whose point
+// lies in front of it (z > 0 in its frame); NaN for an image without one. A tool compares a model
+// before and after refinement with it (every observation, not only those in the problem).
+// Throws as NViewReconstruction::Check().
+std::vector<double> ReprojectionRmsPx(const NViewReconstruction& reconstruction);
 
 }  // namespace trigrav
 

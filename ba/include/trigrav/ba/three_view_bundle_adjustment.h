@@ -139,6 +139,14 @@ class ThreeViewBundleAdjuster {
                           std::shared_ptr<const ThreeViewReprojectionError> error,
                           const ThreeViewBundleAdjustmentConfig& config,
                           const ThreeViewBundleAdjustmentOptions& options);
+  // A temporary would dangle: the adjuster keeps a reference.
+  ThreeViewBundleAdjuster(ThreeViewObservations&& observations,
+                          const ThreeViewBundleAdjustmentConfig& config,
+                          const ThreeViewBundleAdjustmentOptions& options) = delete;
+  ThreeViewBundleAdjuster(ThreeViewObservations&& observations,
+                          std::shared_ptr<const ThreeViewReprojectionError> error,
+                          const ThreeViewBundleAdjustmentConfig& config,
+                          const ThreeViewBundleAdjustmentOptions& options) = delete;
   ~ThreeViewBundleAdjuster();
   ThreeViewBundleAdjuster(const ThreeViewBundleAdjuster&) = delete;
   ThreeViewBundleAdjuster& operator=(const ThreeViewBundleAdjuster&) = delete;

@@ -20,15 +20,24 @@ void RegisterPoseLibSolverBenchmarks();
 
 // robust_benchmark's rows (poselib_robust_benchmarks.cc), on the issue scenes (issue_scenes.h) of
 // <n> = 375 and 875 triplets at the same 2 px threshold (PoseLib's Sampson error in pixels):
-//   BM_PoseLib/estimate_relative_pose/min_iterations_20/<n>  pairs (1,2) and (1,3), one call
-//                                                            each, RansacOptions::min_iterations
-//                                                            = 20
-//   BM_PoseLib/estimate_relative_pose/defaults/<n>           the same with PoseLib's defaults
-//   BM_PoseLib/refine_relpose/<n>                            PoseLib's Levenberg-Marquardt
-//                                                            refinement of pair (1,2)'s inliers
+//   BM_PoseLib/estimate_relative_pose/trigrav_rule/<n>   pairs (1,2) and (1,3), one call each, at
+//                                                        trigrav's stopping rule: confidence,
+//                                                        min_iterations and max_iterations of its
+//                                                        RansacOptions, dyn_num_trials_mult = 1
+//   BM_PoseLib/estimate_relative_pose/trigrav_rule_ransac_only/<n>
+//                                                        the same without the final refinement
+//                                                        (bundle.max_iterations = 0): the RANSAC
+//                                                        (with its local optimisation) alone
+//   BM_PoseLib/estimate_relative_pose/defaults/<n>       PoseLib's RansacOptions (min_iterations =
+//                                                        1000, dyn_num_trials_mult = 3)
+//   BM_PoseLib/refine_relpose_two_pairs/<n>              PoseLib's Levenberg-Marquardt refinement
+//                                                        of pairs (1,2) and (1,3), each on its
+//                                                        inliers from trigrav_rule_ransac_only's
+//                                                        model
 // Counters, from one pass over all the scenes before the timing: rot_deg, trans_deg (medians,
-// views 2 and 3 pooled as in BM_RobustEstimateIssueScenes, a failure counted as 180 deg; pair
-// (1,2) alone for refine_relpose), iterations (median per pair), and inliers.
+// views 2 and 3 pooled as in BM_RobustEstimateIssueScenes, a failure counted as 180 deg),
+// ransac_iterations (RANSAC samples) or lm_iterations (Levenberg-Marquardt iterations) and inliers
+// (medians per pair).
 void RegisterPoseLibRobustBenchmarks();
 
 }  // namespace trigrav::benchmarks

@@ -9,6 +9,7 @@
 #include <PoseLib/robust/bundle.h>
 #include <benchmark/benchmark.h>
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,6 +19,8 @@
 #include "poselib_benchmarks.h"
 #include "trigrav/evaluation/pose_errors.h"
 #include "trigrav/evaluation/statistics.h"
+#include "trigrav/initializers/ransac.h"
+#include "trigrav/initializers/robust_three_view.h"
 #include "trigrav/initializers/three_view_observations.h"
 
 namespace trigrav::benchmarks {
@@ -54,11 +57,26 @@ std::vector<PoseLibScene> ToPoseLibScenes(int num_points) {
   return result;
 }
 
-// RelativePoseOptions at the issue scenes' threshold; min_iterations = 0 keeps PoseLib's default.
-poselib::RelativePoseOptions Options(std::size_t min_iterations) {
+// The stopping rules of the rows. kTrigravRule is trigrav's (RobustThreeViewOptions' RansacOptions,
+// ransac.h): stop after max(min_iterations, k) samples, at most max_iterations, with k = log(1 -
+// confidence) / log(1 - w^s) for the best model's inlier ratio w, i.e. PoseLib's rule with
+// dyn_num_trials_mult = 1 (PoseLib draws w^s without replacement, and its loop takes one sample
+// more: it stops once the count exceeds both bounds). kPoseLibDefaults: PoseLib's RansacOptions.
+enum class StoppingRule { kTrigravRule, kPoseLibDefaults };
+
+// RelativePoseOptions at the issue scenes' threshold with a stopping rule; final_refinement = false
+// skips estimate_relative_pose's refinement after its RANSAC (bundle.max_iterations = 0).
+poselib::RelativePoseOptions Options(StoppingRule rule, bool final_refinement) {
   poselib::RelativePoseOptions options;
   options.max_error = kIssueScenesThresholdPx;
-  if (min_iterations > 0) options.ransac.min_iterations = min_iterations;
+  if (rule == StoppingRule::kTrigravRule) {
+    const RansacOptions trigrav = RobustThreeViewOptions().ransac;
+    options.ransac.success_prob = trigrav.confidence;
+    options.ransac.min_iterations = static_cast<std::size_t>(trigrav.min_iterations);
+    options.ransac.max_iterations = static_cast<std::size_t>(trigrav.max_iterations);
+    options.ransac.dyn_num_trials_mult = 1.0;
+  }
+  if (!final_refinement) options.bundle.max_iterations = 0;
   return options;
 }
 
@@ -74,9 +92,9 @@ poselib::RansacStats EstimatePair(const PoseLibScene& scene,
 
 // Both pairs of each scene in turn, one call each. The counters come from one pass over all the
 // scenes before the timing (a row of the defaults runs fewer calls than there are scenes).
-void BM_EstimateRelativePose(benchmark::State& state, std::size_t min_iterations) {
+void BM_EstimateRelativePose(benchmark::State& state, StoppingRule rule, bool final_refinement) {
   const std::vector<PoseLibScene> scenes = ToPoseLibScenes(static_cast<int>(state.range(0)));
-  const poselib::RelativePoseOptions options = Options(min_iterations);
+  const poselib::RelativePoseOptions options = Options(rule, final_refinement);
   poselib::CameraPose cam2_from_cam1, cam3_from_cam1;
   std::vector<char> inliers12, inliers13;
   PooledErrors errors;
@@ -93,8 +111,8 @@ void BM_EstimateRelativePose(benchmark::State& state, std::size_t min_iterations
       errors.AddFailure();
     }
     for (const poselib::RansacStats& stats : {stats12, stats13}) {
-      iterations.push_back(stats.iterations);
-      inliers.push_back(stats.num_inliers);
+      iterations.push_back(static_cast<double>(stats.iterations));
+      inliers.push_back(static_cast<double>(stats.num_inliers));
     }
   }
   std::size_t i = 0;
@@ -105,85 +123,101 @@ void BM_EstimateRelativePose(benchmark::State& state, std::size_t min_iterations
   }
   state.counters["rot_deg"] = Median(errors.rotation_deg);
   state.counters["trans_deg"] = Median(errors.translation_deg);
-  state.counters["iterations"] = Median(iterations);
+  state.counters["ransac_iterations"] = Median(iterations);
   state.counters["inliers"] = Median(inliers);
 }
 
-// Pair (1,2)'s inliers in normalised coordinates and the pose to refine: the RANSAC's model before
-// estimate_relative_pose's own final refinement (bundle.max_iterations = 0), as trigrav's bundle
-// adjustment starts from its RANSAC's estimate.
+// One pair's inliers in normalised coordinates and the pose to refine: the RANSAC's model at
+// trigrav's stopping rule before estimate_relative_pose's own final refinement
+// (bundle.max_iterations = 0), as trigrav's bundle adjustment starts from its RANSAC's estimate.
 struct RefinementProblem {
   std::vector<poselib::Point2D> x1, x2;
-  poselib::CameraPose cam2_from_cam1;
-  ThreeViewPose ground_truth;
+  poselib::CameraPose cam_from_cam1;
 };
 
+RefinementProblem MakeRefinementProblem(const PoseLibScene& scene, int view) {
+  RefinementProblem problem;
+  std::vector<char> inliers;
+  EstimatePair(scene, view, Options(StoppingRule::kTrigravRule, false), &problem.cam_from_cam1,
+               &inliers);
+  for (std::size_t n = 0; n < inliers.size(); ++n) {
+    if (!inliers[n]) continue;
+    poselib::Point2D x1, x2;
+    scene.cameras[0].unproject(scene.pixels[0][n], &x1);
+    scene.cameras[view].unproject(scene.pixels[view][n], &x2);
+    problem.x1.push_back(x1);
+    problem.x2.push_back(x2);
+  }
+  return problem;
+}
+
 // PoseLib's refine_relpose (Sampson error, its default Cauchy loss at 1 px) as
-// estimate_relative_pose calls it, on pair (1,2)'s inliers of each scene in turn.
-void BM_RefineRelpose(benchmark::State& state) {
+// estimate_relative_pose calls it, on pairs (1,2) and (1,3) of each scene in turn.
+void BM_RefineRelposeTwoPairs(benchmark::State& state) {
   const std::vector<PoseLibScene> scenes = ToPoseLibScenes(static_cast<int>(state.range(0)));
-  poselib::RelativePoseOptions options = Options(20);
-  options.bundle.max_iterations = 0;
-  std::vector<RefinementProblem> problems;
+  std::vector<std::pair<RefinementProblem, RefinementProblem>> problems;
   for (const PoseLibScene& scene : scenes) {
-    RefinementProblem problem;
-    std::vector<char> inliers;
-    EstimatePair(scene, 1, options, &problem.cam2_from_cam1, &inliers);
-    for (std::size_t n = 0; n < inliers.size(); ++n) {
-      if (!inliers[n]) continue;
-      poselib::Point2D x1, x2;
-      scene.cameras[0].unproject(scene.pixels[0][n], &x1);
-      scene.cameras[1].unproject(scene.pixels[1][n], &x2);
-      problem.x1.push_back(x1);
-      problem.x2.push_back(x2);
-    }
-    problem.ground_truth = scene.ground_truth;
-    problems.push_back(problem);
+    problems.emplace_back(MakeRefinementProblem(scene, 1), MakeRefinementProblem(scene, 2));
   }
   // estimate_relative_pose scales the loss from pixels to normalised coordinates by the mean of
-  // 1 / focal length of the two cameras.
+  // 1 / focal length of the two cameras (every camera of the issue scenes has the same focal).
   poselib::BundleOptions bundle;
   bundle.loss_scale *=
       0.5 * (1.0 / scenes[0].cameras[0].focal() + 1.0 / scenes[0].cameras[1].focal());
-  std::vector<double> iterations, inliers, rotation_deg, translation_deg;
-  for (const RefinementProblem& problem : problems) {
-    poselib::CameraPose cam2_from_cam1 = problem.cam2_from_cam1;
-    const poselib::BundleStats stats =
-        poselib::refine_relpose(problem.x1, problem.x2, &cam2_from_cam1, bundle);
-    const CameraPose& truth = problem.ground_truth.cam2_from_cam1;
-    rotation_deg.push_back(RotationErrorDeg(truth.R, cam2_from_cam1.R()));
-    translation_deg.push_back(DirectionErrorDeg(truth.Center(), cam2_from_cam1.center()));
-    iterations.push_back(stats.iterations);
-    inliers.push_back(problem.x1.size());
+  PooledErrors errors;
+  std::vector<double> iterations, inliers;
+  for (std::size_t p = 0; p < problems.size(); ++p) {
+    poselib::CameraPose cam2_from_cam1 = problems[p].first.cam_from_cam1;
+    poselib::CameraPose cam3_from_cam1 = problems[p].second.cam_from_cam1;
+    const poselib::BundleStats stats12 = poselib::refine_relpose(
+        problems[p].first.x1, problems[p].first.x2, &cam2_from_cam1, bundle);
+    const poselib::BundleStats stats13 = poselib::refine_relpose(
+        problems[p].second.x1, problems[p].second.x2, &cam3_from_cam1, bundle);
+    errors.Add(ComputeThreeViewPoseErrors(
+        scenes[p].ground_truth, {FromPoseLib(cam2_from_cam1), FromPoseLib(cam3_from_cam1)}));
+    iterations.push_back(stats12.iterations);
+    iterations.push_back(stats13.iterations);
+    inliers.push_back(static_cast<double>(problems[p].first.x1.size()));
+    inliers.push_back(static_cast<double>(problems[p].second.x1.size()));
   }
   std::size_t i = 0;
   for (auto _ : state) {
-    const RefinementProblem& problem = problems[i++ % problems.size()];
-    poselib::CameraPose cam2_from_cam1 = problem.cam2_from_cam1;
+    const auto& [pair12, pair13] = problems[i++ % problems.size()];
+    poselib::CameraPose cam2_from_cam1 = pair12.cam_from_cam1;
+    poselib::CameraPose cam3_from_cam1 = pair13.cam_from_cam1;
     benchmark::DoNotOptimize(
-        poselib::refine_relpose(problem.x1, problem.x2, &cam2_from_cam1, bundle).cost);
+        poselib::refine_relpose(pair12.x1, pair12.x2, &cam2_from_cam1, bundle).cost);
+    benchmark::DoNotOptimize(
+        poselib::refine_relpose(pair13.x1, pair13.x2, &cam3_from_cam1, bundle).cost);
   }
-  state.counters["rot_deg"] = Median(rotation_deg);
-  state.counters["trans_deg"] = Median(translation_deg);
-  state.counters["iterations"] = Median(iterations);
+  state.counters["rot_deg"] = Median(errors.rotation_deg);
+  state.counters["trans_deg"] = Median(errors.translation_deg);
+  state.counters["lm_iterations"] = Median(iterations);
   state.counters["inliers"] = Median(inliers);
 }
 
 }  // namespace
 
 void RegisterPoseLibRobustBenchmarks() {
-  for (const auto& [name, min_iterations] :
-       {std::pair<const char*, std::size_t>{"min_iterations_20", 20}, {"defaults", 0}}) {
-    benchmark::RegisterBenchmark((std::string("BM_PoseLib/estimate_relative_pose/") + name).c_str(),
-                                 [min_iterations = min_iterations](benchmark::State& state) {
-                                   BM_EstimateRelativePose(state, min_iterations);
-                                 })
+  struct Row {
+    const char* name;
+    StoppingRule rule;
+    bool final_refinement;
+  };
+  for (const Row& row : {Row{"trigrav_rule", StoppingRule::kTrigravRule, true},
+                         Row{"trigrav_rule_ransac_only", StoppingRule::kTrigravRule, false},
+                         Row{"defaults", StoppingRule::kPoseLibDefaults, true}}) {
+    benchmark::RegisterBenchmark(
+        (std::string("BM_PoseLib/estimate_relative_pose/") + row.name).c_str(),
+        [row](benchmark::State& state) {
+          BM_EstimateRelativePose(state, row.rule, row.final_refinement);
+        })
         ->Arg(375)
         ->Arg(875)
         ->Unit(benchmark::kMillisecond)
         ->MinTime(1.0);
   }
-  benchmark::RegisterBenchmark("BM_PoseLib/refine_relpose", BM_RefineRelpose)
+  benchmark::RegisterBenchmark("BM_PoseLib/refine_relpose_two_pairs", BM_RefineRelposeTwoPairs)
       ->Arg(375)
       ->Arg(875)
       ->Unit(benchmark::kMillisecond)

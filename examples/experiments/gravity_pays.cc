@@ -50,6 +50,7 @@
 #include <vector>
 
 #include "common/require_flag.h"
+#include "common/tool_flags.h"
 #include "nview_scene.h"
 #include "trigrav/ba/nview_bundle_adjustment.h"
 
@@ -501,10 +502,10 @@ void WriteProfileCsv(const std::vector<Row>& rows, const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  gflags::SetUsageMessage(
+  trigrav::examples::ParseToolFlags(
       "Gravity in the N-view bundle adjustment, with and without: long drives, weak geometry, "
-      "KITTI models.");
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
+      "KITTI models.",
+      __FILE__, &argc, &argv);
   using trigrav::examples::RequireFlag;
   if (FLAGS_quick) {
     FLAGS_frames = 60;

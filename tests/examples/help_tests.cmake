@@ -34,3 +34,4 @@ trigrav_add_help_test(gravity_bundle_adjuster input_path)
 # The RANSAC confidence, 0.9999.
 trigrav_add_help_test(kitti_triplets confidence
   "-confidence \\([^)]*\\)[^-]*type: double[^-]*default: 0\\.9999[^0-9]")
+trigrav_add_help_test(gravity_pays frames)

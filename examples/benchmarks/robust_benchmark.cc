@@ -8,6 +8,8 @@
 // On scenes like initialize_and_refine_synthetic's default (IssueScenes: 1 px noise, 20 % outliers,
 // threshold 2 px, f = 500 px, 20 scenes from seed 2026, n = 375 and 875 triplets):
 //  - BM_RobustEstimateIssueScenes/3pt/<n>: the 3-point robust estimate;
+//    .../3pt_without_gravity_check/<n>: the same without the gravity-free comparison after a
+//    success (RobustThreeViewOptions::check_gravity_after_success = false);
 //  - BM_InitializeAndRefine/<raw|engine>/<n>: InitializeAndRefine (3pt RANSAC, yaw-only
 //    refinement with one re-classification round): RANSAC only ("raw"), or refined by each engine
 //    (EngineName: ceres, ceres_points_eliminated); counters are per-call medians of the
@@ -57,7 +59,8 @@ using trigrav::benchmarks::IssueScenes;
 void TimeRobustEstimate(benchmark::State& state,
                         const std::vector<trigrav::SyntheticScene>& scenes,
                         trigrav::InitialSolver solver,
-                        double threshold_px) {
+                        double threshold_px,
+                        bool check_gravity_after_success = true) {
   std::vector<trigrav::ThreeViewObservations> observations;
   for (const trigrav::SyntheticScene& scene : scenes) {
     observations.push_back(trigrav::ToObservations(scene));
@@ -65,6 +68,7 @@ void TimeRobustEstimate(benchmark::State& state,
   trigrav::RobustThreeViewOptions options;
   options.solver = solver;
   options.ransac.max_error = threshold_px;
+  options.check_gravity_after_success = check_gravity_after_success;
   trigrav::PooledErrors errors;  // of the first pass over the scenes
   std::vector<double> iterations;
   std::size_t i = 0;
@@ -91,14 +95,18 @@ void BM_RobustEstimate(benchmark::State& state, trigrav::InitialSolver solver) {
   TimeRobustEstimate(state, Scenes(), solver, trigrav::kRobustBenchmarkThresholdPx);
 }
 
-void BM_RobustEstimateIssueScenes(benchmark::State& state) {
+void BM_RobustEstimateIssueScenes(benchmark::State& state, bool check_gravity_after_success) {
   TimeRobustEstimate(state, IssueScenes(static_cast<int>(state.range(0))),
                      trigrav::InitialSolver::kTrifocal3pt,
-                     trigrav::benchmarks::kIssueScenesThresholdPx);
+                     trigrav::benchmarks::kIssueScenesThresholdPx, check_gravity_after_success);
 }
 
-BENCHMARK(BM_RobustEstimateIssueScenes)
-    ->Name("BM_RobustEstimateIssueScenes/3pt")
+BENCHMARK_CAPTURE(BM_RobustEstimateIssueScenes, 3pt, true)
+    ->Arg(375)
+    ->Arg(875)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+BENCHMARK_CAPTURE(BM_RobustEstimateIssueScenes, 3pt_without_gravity_check, false)
     ->Arg(375)
     ->Arg(875)
     ->Unit(benchmark::kMillisecond)

@@ -106,6 +106,26 @@ def test_command_on_a_local_cluster_equals_the_tool(scene, tmp_path):
         assert (image.cam_from_world.R == tool_model.images[image_id].cam_from_world.R).all()
 
 
+def test_command_with_a_scheduler_address_equals_the_tool(scene, tmp_path, client):
+    """python3 -m trigrav_pipeline --scheduler <address>: the command is a client of a running
+    cluster (here the module's LocalCluster, reached by its TCP address as a remote one would be)
+    and runs its partitions on that cluster's workers."""
+    database, gravity = scene
+    output = tmp_path / "remote.csv"
+    address = client.scheduler.address
+    assert address.startswith("tcp://")
+    completed = subprocess.run(
+        [sys.executable, "-m", "trigrav_pipeline", "--database_path", database, "--gravity_csv",
+         gravity, "--output_csv", str(output), "--scheduler", address, "--partition_size", "4",
+         "--no_progress"],
+        capture_output=True, text=True, timeout=120)
+    assert completed.returncode == 0, completed.stderr
+    assert output.read_text() == tool_csv(tmp_path, database, gravity)
+    # The cluster's own worker processes ran the partitions (the command started none).
+    ran = completed.stdout.split("worker processes ")[1].split()
+    assert ran and {int(pid) for pid in ran} <= set(client.run(os.getpid).values())
+
+
 @pytest.mark.parametrize("flags", [
     ("--triplets=connected",),
     ("--rotation_model=yaw_only", "--seed=7", "--max_triplets=6",

@@ -77,7 +77,8 @@ def main(argv=None):
         return 1
     print(f"{report.num_triplets} triplets ({options.triplets}): {report.num_success} estimated, "
           f"{report.num_trusted} trusted; CSV {args.output_csv}; {report.num_partitions} "
-          f"partitions ({report.reused_partitions} reused), {report.seconds:.2f} s")
+          f"partitions ({report.reused_partitions} reused), {report.seconds:.2f} s; worker "
+          f"processes {' '.join(str(pid) for pid in sorted(report.worker_pids))}")
     if args.output_model_path is not None:
         if report.best is None:
             print(f"error: no trusted triplet; no model written (reasons in {args.output_csv})",

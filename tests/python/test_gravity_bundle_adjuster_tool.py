@@ -1,7 +1,8 @@
 """examples/colmap/gravity_bundle_adjuster end to end, checked through the bindings: the gravity
 verdict names a flipped gravity and keeps the model, --upright writes a world whose +y is gravity,
---gravity_report_csv has one row per image, and a model that the refinement would make worse
-(wrong gravity taken as exact) is refused with the image named and nothing written.
+--gravity_report_csv has one row per image, a model that the refinement would make worse (wrong
+gravity taken as exact) is refused with the image named and nothing written, and yaw-only asked for
+with 0.1-0.5 deg of IMU noise never writes a model worse than its input.
 
 The tool: $TRIGRAV_GRAVITY_BUNDLE_ADJUSTER (set by ctest), else the build's."""
 
@@ -153,3 +154,35 @@ def test_sigma_from_data_needs_the_verdict(tmp_path):
     assert result.returncode == 2
     assert "--gravity_sigma_deg=0 (from the data) needs --check_gravity" in result.stderr
     assert not (tmp_path / "out").exists()
+
+
+def with_imu_noise(noise_deg, seed=3):
+    """Every image's gravity tilted by a random angle of sigma noise_deg about a random axis."""
+    rng = np.random.default_rng(seed)
+    _, gravity = make_model()
+    for name, g in gravity.items():
+        axis = np.cross(g, rng.normal(size=3))
+        gravity[name] = rotation(axis, math.radians(noise_deg) * abs(rng.normal())) @ g
+    return gravity
+
+
+@pytest.mark.parametrize("noise_deg", [0.1, 0.5])
+def test_yaw_only_with_imu_noise_never_writes_a_worse_model(tmp_path, noise_deg):
+    noisy = with_imu_noise(noise_deg)
+    report = tmp_path / "report.csv"
+    # Defaults: the verdict refuses exact tilts and solves the prior; every image improves.
+    result = run_tool(tmp_path, noisy, f"--output_path={tmp_path / 'refined'}",
+                      "--rotation_model=yaw_only", f"--gravity_report_csv={report}")
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.startswith("gravity bundle adjustment (gravity_prior"), result.stdout
+    with open(report) as f:
+        for row in csv.DictReader(f):
+            assert float(row["rms_after_px"]) <= float(row["rms_before_px"]), row
+    # Without the verdict, yaw-only at 0.5 deg degrades an image: refused, nothing written.
+    if noise_deg == 0.5:
+        output = tmp_path / "forced"
+        result = run_tool(tmp_path, noisy, f"--output_path={output}", "--rotation_model=yaw_only",
+                          "--check_gravity=false", "--gravity_sigma_deg=0.5")
+        assert result.returncode == 1
+        assert "worse than the input: image im0" in result.stderr, result.stderr
+        assert not output.exists()

@@ -37,10 +37,8 @@ def parse(argv):
     add("--max_triplets", type=int, default=defaults.max_triplets)
     add("--min_tracks", type=int, default=defaults.min_tracks)
     add("--solver", default=defaults.solver)
-    add("--threshold_px", "--max_error_px", dest="threshold_px", type=float,
-        default=defaults.threshold_px,
-        help="inlier threshold (px), also the refinement's Huber scale (2); --max_error_px: the "
-        "tool's former name")
+    add("--threshold_px", type=float, default=defaults.threshold_px,
+        help="inlier threshold (px), also the refinement's Huber scale (2)")
     add("--rotation_model", default=defaults.rotation_model, choices=sorted(pipeline.ROTATION_MODELS))
     add("--gravity_sigma_deg", type=float, default=defaults.gravity_sigma_deg)
     add("--engine", default=defaults.engine, choices=sorted(pipeline.ENGINES))

@@ -50,7 +50,7 @@ class TripletOptions:
     max_triplets: int = 0  # 0: no limit
     min_tracks: int = 20
     solver: str = "3pt"
-    threshold_px: float = 2.0  # inlier threshold (the tool's --threshold_px, was --max_error_px)
+    threshold_px: float = 2.0  # inlier threshold (the tool's --threshold_px)
     rotation_model: str = "gravity_prior"  # or "yaw_only"
     gravity_sigma_deg: float = 0.1
     engine: str = trigrav.ThreeViewBundleAdjustmentOptions().engine.name.lower()

@@ -689,7 +689,9 @@ NViewBundleAdjustmentSummary RefineWithGravity(const NViewReconstruction& input,
     note << "gravity left out of image(s) " << ImageList(final_config.images_without_gravity)
          << " (the images disagree with it by up to "
          << *std::max_element(verdict.disagreement_deg.begin(), verdict.disagreement_deg.end())
-         << " deg; IMU sigma " << verdict.sigma_deg << " deg)";
+         << " deg; IMU sigma estimated at "
+         << std::max(verdict.sigma_deg, NViewBundleAdjustmentOptions::kMinEstimatedGravitySigmaDeg)
+         << " deg)";
   }
   // 3. The final solve, from the images-dominated solution: yaw-only if asked for and the data
   // accept exact tilts, else the gravity prior.

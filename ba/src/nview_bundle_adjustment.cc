@@ -7,6 +7,7 @@
 #include <ceres/rotation.h>
 
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -550,6 +551,35 @@ NViewBundleAdjustmentSummary NViewBundleAdjuster::Solve() {
 
 namespace {
 
+// `moved` rotated rigidly about `reference`'s centre back into `start`'s world frame: the rotation
+// Q closest to the images' R_k^moved^T R_k^start in the chordal sense (the polar factor of their
+// sum), applied as R_k <- R_k Q, X <- C_ref + Q^T (X - C_ref). A solve may turn the whole model (a
+// gauge; e.g. one flipped gravity prior tilting it); this keeps the caller's world frame.
+NViewReconstruction AlignedToStart(NViewReconstruction moved,
+                                   const NViewReconstruction& start,
+                                   int reference) {
+  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+  for (std::size_t k = 0; k < moved.images.size(); ++k) {
+    sum += moved.images[k].cam_from_world.R.transpose() * start.images[k].cam_from_world.R;
+  }
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(sum, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d q = svd.matrixU() * svd.matrixV().transpose();
+  if (q.determinant() < 0.0) {
+    Eigen::Matrix3d u = svd.matrixU();
+    u.col(2) = -u.col(2);
+    q = u * svd.matrixV().transpose();
+  }
+  const Eigen::Vector3d pivot = moved.images[reference].cam_from_world.Center();
+  for (NViewImage& image : moved.images) {
+    const Eigen::Vector3d center = pivot + q.transpose() * (image.cam_from_world.Center() - pivot);
+    image.cam_from_world.R = image.cam_from_world.R * q;
+    image.cam_from_world.t = -image.cam_from_world.R * center;
+  }
+  for (Eigen::Vector3d& point : moved.points_in_world)
+    point = pivot + q.transpose() * (point - pivot);
+  return moved;
+}
+
 // Per image, the angle (deg) between its measured gravity and the one the images imply: R_k g_w,
 // with g_w the normalised sum of R_k^T g_k over the images whose `used` is set.
 std::vector<double> GravityDisagreementsDeg(const NViewReconstruction& reconstruction,
@@ -669,7 +699,8 @@ NViewBundleAdjustmentSummary RefineWithGravity(const NViewReconstruction& input,
     first_summary.message = "the images-only solve failed: " + first_summary.message;
     return finish(first_summary, nullptr);
   }
-  const NViewReconstruction seen = first.CurrentReconstruction();
+  const NViewReconstruction seen =
+      AlignedToStart(first.CurrentReconstruction(), input, config.reference_image);
 
   // 2. The verdict.
   GravityVerdict verdict = JudgeGravity(seen, options);

@@ -47,7 +47,15 @@ bool GravityPriorError::operator()(const T* quaternion, T* residuals) const {
   T v[3];
   for (int i = 0; i < 3; ++i) v[i] = p[i] - cos_angle * T(gravity_in_cam_[i]);
   const T sin_squared = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-  T scale(1.0);  // first order at v = 0, where sqrt has no derivative
+  if (!(sin_squared > T(1e-24)) && cos_angle < T(0.0)) {
+    // p = -g: the log map has no direction there; the angle is pi from every side (a maximum of
+    // the cost), so the residual has norm pi and no gradient. Returning v = 0 here would make the
+    // exact antipode (a flipped gravity sign) look like a perfect match.
+    residuals[0] = T(M_PI);
+    residuals[1] = T(0.0);
+    return true;
+  }
+  T scale(1.0);  // first order at v = 0 (p = g), where sqrt has no derivative
   if (sin_squared > T(1e-24)) {
     using std::atan2;
     using std::sqrt;

@@ -159,6 +159,10 @@ TEST(FactorsTest, GravityPriorGradientAndValue) {
   EXPECT_NEAR(residuals[1], 0.0, 1e-15);
   std::unique_ptr<ceres::CostFunction> exact_cost(GravityPriorError::Create(g_ref, predicted));
   ExpectGradientsMatch(*exact_cost, {&quaternion_manifold}, {quaternion}, kGradientTolerance);
+  // A flipped sign: exactly opposite directions are pi apart, not a match.
+  const GravityPriorError flipped(g_ref, -predicted);
+  ASSERT_TRUE(flipped(quaternion, residuals));
+  EXPECT_NEAR(std::hypot(residuals[0], residuals[1]), M_PI, 1e-12);
   EXPECT_THROW(GravityPriorError(Eigen::Vector3d::Zero(), g_cam), std::invalid_argument);
 }
 

@@ -9,11 +9,13 @@
 #include <sys/resource.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace trigrav {
@@ -37,11 +39,21 @@ TEST(ParallelForTest, RunsEveryItemOnceForAnyThreadCount) {
 }
 
 TEST(ParallelForTest, RethrowsTheFirstExceptionAfterJoiningAndStartsNoMoreItems) {
+  // The items after the throwing one wait for it and then take 100 us each, so that the other
+  // threads cannot run out the 10000 items before the pool sees the exception (on a loaded
+  // machine, instant items could: the test then failed with 10000 started).
   std::atomic<int> started{0};
+  std::atomic<bool> thrown{false};
   EXPECT_THROW(ParallelFor(10000, 4,
                            [&](std::size_t i) {
                              started++;
-                             if (i == 10) throw std::runtime_error("item 10");
+                             if (i == 10) {
+                               thrown = true;
+                               throw std::runtime_error("item 10");
+                             }
+                             if (i < 10) return;
+                             while (!thrown.load()) std::this_thread::yield();
+                             std::this_thread::sleep_for(std::chrono::microseconds(100));
                            }),
                std::runtime_error);
   EXPECT_LT(started.load(), 10000);

@@ -277,6 +277,11 @@ void BindSummary(py::module_& m) {
           "observations_per_image",
           [](const Summary& s) { return VectorToArray(s.observations_per_image); },
           "(N,) int32: each image's observations in the problem")
+      .def_property_readonly(
+          "images_losing_observations",
+          [](const Summary& s) { return VectorToArray(s.images_losing_observations); },
+          "int32 indices of the images that kept fewer than half of their observations (not a "
+          "success when any)")
       .def_readonly("rotation_model", &Summary::rotation_model,
                     "the ThreeViewBundleAdjustmentOptions.RotationModel solved")
       .def_readonly("gravity_sigma_deg", &Summary::gravity_sigma_deg,

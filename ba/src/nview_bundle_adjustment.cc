@@ -645,7 +645,7 @@ void RefuseDroppedObservations(const NViewReconstruction& input,
   if (!summary->success) return;
   std::vector<int> given(input.images.size(), 0);
   for (const NViewObservation& o : input.observations) ++given[o.image_index];
-  std::vector<int> dropped;
+  std::vector<int>& dropped = summary->images_losing_observations;
   for (std::size_t k = 0; k < given.size(); ++k) {
     if (given[k] >= 2 && 2 * summary->observations_per_image[k] < given[k]) {
       dropped.push_back(static_cast<int>(k));

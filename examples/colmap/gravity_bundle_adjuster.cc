@@ -228,15 +228,9 @@ int Run() {
   if (!summary.success) {
     std::cerr << "error: the refinement failed: " << summary.message;
     // Name the images that lost observations (the message gives their indices).
-    std::vector<int> total(input.image_ids.size(), 0);
-    for (const trigrav::NViewObservation& o : input.reconstruction.observations) {
-      ++total[o.image_index];
-    }
     std::string lost;
-    for (std::size_t i = 0; i < summary.observations_per_image.size(); ++i) {
-      if (2 * summary.observations_per_image[i] < total[i]) {
-        lost += (lost.empty() ? "" : ", ") + name(static_cast<int>(i));
-      }
+    for (const int i : summary.images_losing_observations) {
+      lost += (lost.empty() ? "" : ", ") + name(i);
     }
     if (!lost.empty()) std::cerr << " (" << lost << ")";
     std::cerr << "; nothing written" << std::endl;

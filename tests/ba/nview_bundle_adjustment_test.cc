@@ -648,6 +648,7 @@ TEST_F(NViewGravityVerdictTest, NeverSucceedsWithAnImagesObservationsDropped) {
     EXPECT_FALSE(summary.success);
     EXPECT_NE(summary.message.find("image(s) 9 keep fewer than half"), std::string::npos)
         << summary.message;
+    EXPECT_EQ(summary.images_losing_observations, std::vector<int>{9});
   }
 }
 

@@ -325,6 +325,7 @@ def test_gravity_verdict_names_a_flipped_gravity_and_upright():
     assert f"IMU sigma estimated at {summary.estimated_gravity_sigma_deg:.6g} deg" in \
         summary.message, summary.message
     assert summary.observations_per_image.tolist() == [60] * 6
+    assert summary.images_losing_observations.tolist() == []
     assert summary.rotation_model == \
         trigrav.ThreeViewBundleAdjustmentOptions.RotationModel.GRAVITY_PRIOR
     assert (summary.residual_rms_px < 0.6).all()

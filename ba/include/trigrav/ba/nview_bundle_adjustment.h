@@ -202,6 +202,9 @@ struct NViewBundleAdjustmentSummary : CeresSolveReport {
   std::vector<Eigen::MatrixXd> covariances;
   // Per image: its observations in the problem.
   std::vector<int> observations_per_image;
+  // RefineWithGravity: the images that kept fewer than half of their observations (at least 2
+  // given), by index; not a success when there is any.
+  std::vector<int> images_losing_observations;
   // The rotation model solved and the IMU sigma its priors used (kGravityPrior).
   BundleAdjustmentOptions::RotationModel rotation_model =
       BundleAdjustmentOptions::RotationModel::kYawOnly;

@@ -30,7 +30,7 @@
 //   RPE dir  median angle between the estimated and true directions of the step from image k to
 //            k+1, in camera k's frame (deg)
 //
-//   gravity_pays                                   # the README's synthetic rows (8 min, 2 cores)
+//   gravity_pays                                   # the README's synthetic rows
 //   gravity_pays_kitti.py ... -- <flags>           # with the KITTI rows (README's command)
 //   gravity_pays --quick                           # smoke test (ctest gravity_pays_quick)
 

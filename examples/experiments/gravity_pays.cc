@@ -606,6 +606,9 @@ int main(int argc, char** argv) {
   }
   RequireFlag(kitti_models.empty() || !FLAGS_kitti_path.empty(),
               "--kitti_models needs --kitti_path");
+  RequireFlag(
+      std::isfinite(FLAGS_kitti_gravity_pitch_deg) && std::isfinite(FLAGS_kitti_gravity_roll_deg),
+      "--kitti_gravity_pitch_deg and --kitti_gravity_roll_deg must be finite");
 #ifndef TRIGRAV_GRAVITY_PAYS_WITH_COLMAP
   RequireFlag(kitti_models.empty(), "--kitti_models: built without trigrav::colmap");
 #endif

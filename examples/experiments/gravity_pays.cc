@@ -441,16 +441,14 @@ int FrameOfName(const std::string& name) {
 }
 
 // How a gravity disagrees with a model's poses: with the world's vertical that fits them best
-// (g_w ~ sum_k R_k^T g_k), per image the rotation vector r_k (camera frame) taking R_k g_w to g_k.
+// (ModelVertical), per image the rotation vector r_k (camera frame) taking R_k g_w to g_k.
 // Returns "RMS |r_k|, the mean r_k (camera x, y, z) and the lag-1 autocorrelation of r_k - mean
 // along the images": a constant camera-to-IMU misalignment shows as a mean, smooth errors as an
 // autocorrelation near 1, independent noise as neither.
 std::string GravityAgainstPoses(const std::vector<CameraPose>& cam_from_world,
                                 const std::vector<Eigen::Vector3d>& gravity_in_cam) {
   const std::size_t n = cam_from_world.size();
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (std::size_t k = 0; k < n; ++k) sum += cam_from_world[k].R.transpose() * gravity_in_cam[k];
-  const Eigen::Vector3d gravity_in_world = sum.normalized();
+  const Eigen::Vector3d gravity_in_world = ModelVertical(cam_from_world, gravity_in_cam);
   std::vector<Eigen::Vector3d> r(n);
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   double squares = 0.0;

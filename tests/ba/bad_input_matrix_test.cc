@@ -1054,14 +1054,18 @@ TEST(BadInputMatrix, RobustEstimatorRejectsNoisyDataWithoutParallax) {
           EstimateThreeViewPoseRobust(input.observations, options);
       if (geometry != Geometry::kGeneric) {
         EXPECT_FALSE(estimate.success) << InitialSolverName(solver);
-        EXPECT_NE(estimate.message.find("no parallax between views 1 and 2"), std::string::npos)
+        // Refused for its baseline: none, or too little for a pose within max_pose_sigma_deg.
+        EXPECT_TRUE(estimate.cause == FailureCause::kNoParallax ||
+                    estimate.cause == FailureCause::kUncertainPose)
             << InitialSolverName(solver) << ": " << estimate.message;
         continue;
       }
       ASSERT_TRUE(estimate.success) << InitialSolverName(solver) << ": " << estimate.message;
       const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(input.truth, estimate.pose);
-      // Estimated, not rejected: errors at the level of robust_three_view_test (8pt: 5.8 deg).
-      EXPECT_LT(e.MaxRotationDeg(), 1.0) << InitialSolverName(solver);
+      // Estimated, not rejected: errors at the level of robust_three_view_test (8pt: 5.8 deg; the
+      // linear trifocal tensor, far weaker, within its 3 deg there).
+      EXPECT_LT(e.MaxRotationDeg(), solver == InitialSolver::kTrifocalLinear ? 3.0 : 1.0)
+          << InitialSolverName(solver);
       EXPECT_LT(e.MaxTranslationDeg(), 10.0) << InitialSolverName(solver);
     }
   }

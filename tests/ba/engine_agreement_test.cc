@@ -89,47 +89,6 @@ ThreeViewObservations SceneObservations(CameraModel camera,
   return observations;
 }
 
-// Forward motion, as on a road: camera 1 at the origin, cameras 2 and 3 1 and 2 m ahead along
-// the optical axis (small yaws and sideways offsets), points 8-60 m ahead and at least 3 m off the
-// direction of motion (so that each is triangulated in front of the cameras from any start near
-// the truth); 1 px noise, 0.05 deg of IMU tilt noise, a pinhole camera.
-ThreeViewObservations ForwardMotionObservations(int num_points,
-                                                std::mt19937_64* rng,
-                                                ThreeViewPose* truth) {
-  std::normal_distribution<double> normal(0.0, 1.0);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  constexpr double kTiltSigma = 0.05 * M_PI / 180.0;
-  ThreeViewObservations observations;
-  Eigen::Matrix3d rotation[3];
-  Eigen::Vector3d center[3];
-  for (int k = 0; k < 3; ++k) {
-    observations.cameras[k] = TypicalCamera(CameraModel::kPinhole);
-    rotation[k] = Eigen::AngleAxisd(0.02 * k * normal(*rng), Eigen::Vector3d::UnitY());
-    center[k] = Eigen::Vector3d(0.05 * k * normal(*rng), 0.0, k);
-    const Eigen::Vector3d tilt(kTiltSigma * normal(*rng), 0.0, kTiltSigma * normal(*rng));
-    observations.gravity_in_cam[k] =
-        Eigen::AngleAxisd(tilt.norm(), tilt.normalized()) * rotation[k] * Eigen::Vector3d::UnitY();
-  }
-  truth->cam2_from_cam1 = CameraPose{rotation[1], -rotation[1] * center[1]};
-  truth->cam3_from_cam1 = CameraPose{rotation[2], -rotation[2] * center[2]};
-  while (static_cast<int>(observations.pixels[0].size()) < num_points) {
-    const Eigen::Vector3d point(40.0 * uniform(*rng) - 20.0, 5.0 * uniform(*rng) - 3.0,
-                                8.0 + 52.0 * uniform(*rng));
-    if (std::abs(point.x()) < 3.0) continue;
-    Eigen::Vector2d pixels[3];
-    bool visible = true;
-    for (int k = 0; k < 3 && visible; ++k) {
-      const Eigen::Vector3d x = rotation[k] * (point - center[k]);
-      pixels[k] = observations.cameras[k].Project(x) + Eigen::Vector2d(normal(*rng), normal(*rng));
-      visible = x.z() > 1.0 && pixels[k].x() > 0.0 && pixels[k].x() < 1280.0 &&
-                pixels[k].y() > 0.0 && pixels[k].y() < 960.0;
-    }
-    if (!visible) continue;
-    for (int k = 0; k < 3; ++k) observations.pixels[k].push_back(pixels[k]);
-  }
-  return observations;
-}
-
 struct Solved {
   ThreeViewBundleAdjustmentSummary summary;
   ThreeViewPose pose;

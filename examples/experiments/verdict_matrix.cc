@@ -85,9 +85,12 @@ trigrav::SyntheticSceneOptions SceneOptions() {
   return options;
 }
 
+// A success further off than this (deg, rotation or translation direction, view 2 or 3) is wrong.
+constexpr double kWrongDeg = 5.0;
+
 void PrintMistake(InputMistake mistake, const std::vector<trigrav::SyntheticScene>& scenes) {
   std::vector<double> ratio, max_pair_deg, rotation_error_deg, ms;
-  int failures = 0, culprit_named = 0;
+  int failures = 0, culprit_named = 0, wrong = 0;
   std::string message;
   for (std::size_t s = 0; s < scenes.size(); ++s) {
     const trigrav::ThreeViewObservations observations = WithMistake(scenes[s], mistake);
@@ -106,16 +109,17 @@ void PrintMistake(InputMistake mistake, const std::vector<trigrav::SyntheticScen
       if (message.empty()) message = estimate.message;
       continue;
     }
-    rotation_error_deg.push_back(
-        trigrav::ComputeThreeViewPoseErrors(scenes[s].ground_truth, estimate.refined)
-            .MaxRotationDeg());
+    const trigrav::ThreeViewPoseErrors errors =
+        trigrav::ComputeThreeViewPoseErrors(scenes[s].ground_truth, estimate.refined);
+    rotation_error_deg.push_back(errors.MaxRotationDeg());
+    wrong += std::max(errors.MaxRotationDeg(), errors.MaxTranslationDeg()) > kWrongDeg;
   }
-  std::printf("%-28s %4d/%-4zu %6.3f %6.3f %8.2f %8.2f %6d %8.3f %8.3f %7.1f\n",
+  std::printf("%-29s %4d/%-4zu %6.3f %6.3f %8.2f %8.2f %6d %8.3f %8.3f %5d %7.1f\n",
               trigrav::InputMistakeName(mistake), failures, scenes.size(),
               trigrav::Quantile(ratio, 0.0), trigrav::Median(ratio), trigrav::Median(max_pair_deg),
               trigrav::Quantile(max_pair_deg, 1.0), culprit_named,
               trigrav::Median(rotation_error_deg), trigrav::Quantile(rotation_error_deg, 1.0),
-              trigrav::Median(ms));
+              wrong, trigrav::Median(ms));
   if (!message.empty()) std::printf("    first message: %s\n", message.c_str());
 }
 
@@ -199,8 +203,8 @@ int main(int argc, char** argv) {
       "%g deg; InitializeAndRefine defaults, min_inlier_ratio %.3f\n",
       FLAGS_scenes, FLAGS_points, FLAGS_focal_px, FLAGS_noise_px, 100.0 * FLAGS_outlier_ratio,
       FLAGS_imu_noise_deg, FLAGS_min_inlier_ratio);
-  std::printf("%-28s %9s %6s %6s %8s %8s %6s %8s %8s %7s\n", "mistake", "failed", "ratio", "median",
-              "pair med", "pair max", "named", "rot med", "rot max", "ms");
+  std::printf("%-29s %9s %6s %6s %8s %8s %6s %8s %8s %5s %7s\n", "mistake", "failed", "ratio",
+              "median", "pair med", "pair max", "named", "rot med", "rot max", "wrong", "ms");
   for (const InputMistake mistake : mistakes) PrintMistake(mistake, scenes);
   if (FLAGS_outlier_triplets > 0) PrintPureOutliers();
   return 0;

@@ -160,5 +160,23 @@ TEST(Verdict, PixelsThatTheIntrinsicsCannotProduceAreNamed) {
   }
 }
 
+// The image a principal point implies, with a tenth of it as margin (derivations.md 7.7): pixels
+// stretched to 1.05 of the 640 x 480 image are judged by the other tests; to 1.2 (another camera's
+// image, as KITTI's tracks with another camera's intrinsics) they are refused as such.
+TEST(Verdict, PixelsBeyondATenthOfTheImageAreAnotherCamerasIntrinsics) {
+  std::mt19937_64 rng(5);
+  const SyntheticScene scene = Scene(200, 0.0, &rng);  // 640 x 480, principal point (320, 240)
+  for (const double stretch : {1.05, 1.2}) {
+    ThreeViewObservations observations = ToObservations(scene);
+    for (auto& view : observations.pixels) {
+      for (Eigen::Vector2d& pixel : view) pixel.x() *= stretch;
+    }
+    const RobustThreeViewEstimate estimate =
+        EstimateThreeViewPoseRobust(observations, RobustThreeViewOptions());
+    EXPECT_EQ(estimate.cause == FailureCause::kPixelsVsIntrinsics, stretch > 1.1)
+        << stretch << ": " << estimate.message;
+  }
+}
+
 }  // namespace
 }  // namespace trigrav

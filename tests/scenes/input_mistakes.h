@@ -19,22 +19,26 @@ namespace trigrav {
 
 enum class InputMistake {
   kNone,
-  kGravitySignCamera2,        // camera 2's gravity points up (-g)
-  kWorldVerticalEveryCamera,  // the world's vertical e_y given as every camera's gravity
-  kTransposedRotation,        // gravity mapped with W_k^T instead of W_k (world-to-camera W_k)
-  kHalfResolutionPixels,      // pixels of a half-resolution image, full-resolution intrinsics
-  kRowColumnPixels,           // pixels given as (row, column)
-  kViews2And3PixelsSwapped,   // the pixels of views 2 and 3 swapped (gravity in order)
+  kGravitySignCamera2,         // camera 2's gravity points up (-g)
+  kWorldVerticalEveryCamera,   // the world's vertical e_y given as every camera's gravity
+  kTransposedRotation,         // gravity mapped with W_k^T instead of W_k (world-to-camera W_k)
+  kHalfResolutionPixels,       // pixels of a half-resolution image, full-resolution intrinsics
+  kRowColumnPixels,            // pixels given as (row, column)
+  kViews2And3PixelsSwapped,    // the pixels of views 2 and 3 swapped (gravity in order)
+  kReadmeExampleIntrinsics,    // every camera given the README example's intrinsics (KITTI's)
+  kFocalLength20PercentShort,  // every camera's focal length 0.8 of the true one
 };
 
-inline constexpr std::array<InputMistake, 7> kInputMistakes = {
+inline constexpr std::array<InputMistake, 9> kInputMistakes = {
     InputMistake::kNone,
     InputMistake::kGravitySignCamera2,
     InputMistake::kWorldVerticalEveryCamera,
     InputMistake::kTransposedRotation,
     InputMistake::kHalfResolutionPixels,
     InputMistake::kRowColumnPixels,
-    InputMistake::kViews2And3PixelsSwapped};
+    InputMistake::kViews2And3PixelsSwapped,
+    InputMistake::kReadmeExampleIntrinsics,
+    InputMistake::kFocalLength20PercentShort};
 
 inline const char* InputMistakeName(InputMistake mistake) {
   switch (mistake) {
@@ -52,6 +56,10 @@ inline const char* InputMistakeName(InputMistake mistake) {
       return "row-column-pixels";
     case InputMistake::kViews2And3PixelsSwapped:
       return "views-2-3-pixels-swapped";
+    case InputMistake::kReadmeExampleIntrinsics:
+      return "readme-example-intrinsics";
+    case InputMistake::kFocalLength20PercentShort:
+      return "focal-length-20-percent-short";
   }
   throw std::invalid_argument("trigrav: unknown InputMistake value");
 }
@@ -87,6 +95,17 @@ inline ThreeViewObservations WithMistake(const SyntheticScene& scene, InputMista
       break;
     case InputMistake::kViews2And3PixelsSwapped:
       std::swap(observations.pixels[1], observations.pixels[2]);
+      break;
+    case InputMistake::kReadmeExampleIntrinsics:
+      for (Camera& camera : observations.cameras) {
+        camera = PinholeCamera{718.856, 718.856, 607.193, 185.216};
+      }
+      break;
+    case InputMistake::kFocalLength20PercentShort:
+      for (Camera& camera : observations.cameras) {  // PINHOLE or OPENCV: fx and fy first
+        camera.params[0] *= 0.8;
+        camera.params[1] *= 0.8;
+      }
       break;
   }
   return observations;

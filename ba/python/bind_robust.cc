@@ -108,8 +108,13 @@ void BindResults(py::module_& m) {
       .def_readonly("num_inliers", &GravityConsistency::num_inliers)
       .def_readonly("pair_inconsistency_deg", &GravityConsistency::pair_inconsistency_deg,
                     "pairs (1,2), (1,3), (2,3)")
+      .def_readonly("swapped_pair_inconsistency_deg",
+                    &GravityConsistency::swapped_pair_inconsistency_deg,
+                    "pairs (1,2), (1,3) with the gravities of views 2 and 3 exchanged")
       .def_readonly("rotation_disagreement_deg", &GravityConsistency::rotation_disagreement_deg,
                     "views 2 and 3")
+      .def_readonly("direction_disagreement_deg", &GravityConsistency::direction_disagreement_deg,
+                    "views 2 and 3: angle between the two estimates' centre directions")
       .def_readonly("inconsistent_camera", &GravityConsistency::inconsistent_camera,
                     "1, 2 or 3; 0 when none is named")
       .def("__repr__", [](const GravityConsistency& g) {

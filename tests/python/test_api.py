@@ -66,8 +66,14 @@ def test_verdict_gives_evidence_and_a_cause(scene, observations):
         pixels=[scene.pixels[0], scene.pixels[2], scene.pixels[1]], cameras=scene.camera,
         gravity_in_cam=scene.gravity_in_cam_measured)
     refused = trigrav.estimate_three_view_pose_robust(swapped)
-    assert not refused.success and refused.cause != trigrav.FailureCause.NONE
+    assert refused.cause == trigrav.FailureCause.VIEWS_OUT_OF_ORDER, refused.message
     assert len(refused.message) <= 210, refused.message
+    # The figures behind it: the gravities fit the images only exchanged (the RANSAC failed, so
+    # there is no pose to disagree with).
+    gravity = refused.gravity
+    assert gravity.measured and min(gravity.pair_inconsistency_deg) > 1.0
+    assert max(gravity.swapped_pair_inconsistency_deg) < 1.0  # the bound for exact gravity
+    assert list(gravity.direction_disagreement_deg) == [0.0, 0.0]
     # Too few triplets for a verdict.
     few = trigrav.ThreeViewObservations(
         pixels=[p[:10] for p in scene.pixels], cameras=scene.camera,

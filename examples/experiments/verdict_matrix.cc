@@ -42,7 +42,7 @@ DEFINE_bool(gravity_prior,
             false,
             "Gravity-prior rotation model (tilt correction) instead of yaw-only.");
 DEFINE_bool(check_gravity_after_success, true, "robust.check_gravity_after_success.");
-DEFINE_string(mistakes, "all", "all, or one name of trigrav/evaluation/input_mistakes.h.");
+DEFINE_string(mistakes, "all", "all, or one name of tests/scenes/input_mistakes.h.");
 DEFINE_int32(outlier_triplets, 1000, "Triplets of the pure-outlier timing (0: skip it).");
 DEFINE_int32(outlier_runs, 20, "Calls timed on pure outliers (median).");
 DEFINE_uint64(seed, 1, "Seed of the scenes and of RANSAC.");

@@ -166,9 +166,9 @@ bool CompareWithGravityFree(const TripletData& data,
 // pixels of a downscaled image put it; with at least kMinTripletsForCentre triplets). Returns the
 // message, "" when the pixels fit.
 constexpr std::size_t kMinTripletsForCentre = 50;
-// A tenth of the implied image: a principal point up to 4.5 % of the width off the centre (KITTI's
-// pixels reach 2.2 % beyond 2 c). A fifth let another camera's intrinsics pass on KITTI 02 (frame
-// 251, 29 deg off); a tenth refuses all 596 triplets (examples/kitti/README.md).
+// A tenth of the implied image: a principal point up to 4.5 % of the image left of or above its
+// centre (KITTI's pixels reach 2.2 % beyond 2 c). A fifth let another camera's intrinsics pass on
+// KITTI 02 (frame 251, 29 deg off); a tenth refuses all 596 triplets (examples/kitti/README.md).
 constexpr double kImageMargin = 0.1;
 std::string PixelsAgainstIntrinsics(const ThreeViewObservations& observations) {
   if (observations.HasBearings()) return "";

@@ -1,8 +1,9 @@
 // Mistakes matrix: InitializeAndRefine at its defaults against each common input mistake of
 // tests/scenes/input_mistakes.h (synthetic scenes of 600 triplets, 1 px noise, 10 %
 // outliers, f = 1000 px), and against pure outliers. A mistake must give success == false with a
-// message naming its likely cause; correct input must still give the true pose. The figures per
-// mistake are in the README's robustness table (examples/experiments/verdict_matrix).
+// message naming its likely cause (all but the short focal length, which the verdict does not
+// see); correct input must still give the true pose. The figures per mistake:
+// examples/experiments/README.md (verdict_matrix).
 
 #include <gtest/gtest.h>
 

@@ -161,12 +161,12 @@ TEST(Verdict, PixelsThatTheIntrinsicsCannotProduceAreNamed) {
 }
 
 // The image a principal point implies, with a tenth of it as margin (derivations.md 7.7): pixels
-// stretched to 1.05 of the 640 x 480 image are judged by the other tests; to 1.2 (another camera's
-// image, as KITTI's tracks with another camera's intrinsics) they are refused as such.
+// stretched to 1.08 of the 640 x 480 image are judged by the other tests; to 1.12 (another
+// camera's image, as KITTI's tracks with another camera's intrinsics) they are refused as such.
 TEST(Verdict, PixelsBeyondATenthOfTheImageAreAnotherCamerasIntrinsics) {
   std::mt19937_64 rng(5);
   const SyntheticScene scene = Scene(200, 0.0, &rng);  // 640 x 480, principal point (320, 240)
-  for (const double stretch : {1.05, 1.2}) {
+  for (const double stretch : {1.08, 1.12}) {
     ThreeViewObservations observations = ToObservations(scene);
     for (auto& view : observations.pixels) {
       for (Eigen::Vector2d& pixel : view) pixel.x() *= stretch;

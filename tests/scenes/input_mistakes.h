@@ -102,9 +102,10 @@ inline ThreeViewObservations WithMistake(const SyntheticScene& scene, InputMista
       }
       break;
     case InputMistake::kFocalLength20PercentShort:
-      for (Camera& camera : observations.cameras) {  // PINHOLE or OPENCV: fx and fy first
-        camera.params[0] *= 0.8;
-        camera.params[1] *= 0.8;
+      for (Camera& camera : observations.cameras) {
+        const internal::CameraParamLayout layout = internal::ParamLayout(camera.model);
+        camera.params[layout.fx] *= 0.8;
+        if (layout.fy != layout.fx) camera.params[layout.fy] *= 0.8;
       }
       break;
   }

@@ -127,8 +127,9 @@ enum class FailureCause {
   kChanceConsensus,     // as many inliers would fit by chance (number of false alarms >= 1)
   kUncertainPose,       // the inliers leave the pose uncertain (max_pose_sigma_deg)
   kNoParallax,          // camera 2's centre, which sets the scale, is not observable
-  kPixelsVsIntrinsics,  // pixels the intrinsics cannot produce: another camera, a resized
-                        // image, (row, column) pixels
+  kPixelsVsIntrinsics,  // pixels the intrinsics cannot produce (beyond a tenth of the image
+                        // the principal point implies): another camera, a resized image,
+                        // (row, column) pixels
   kViewsOutOfOrder,     // views 2 and 3 swapped: each one's gravity fits the other's images
   kCameraGravity,       // one or more cameras' gravity contradicts the images
   kNoisyGravity,        // the gravity is noisier than the rotation model allows

@@ -1,12 +1,9 @@
-// What InitializeAndRefine says to common input mistakes (trigrav/evaluation/input_mistakes.h) and
-// to pure outliers: per mistake, over synthetic scenes, how many calls fail, the inlier ratio of
-// the gravity-aware RANSAC, the gravity inconsistency angles and, for the calls that succeed, the
-// rotation error against the ground truth; then the time to fail on pure outliers of
-// EstimateThreeViewPoseRobust and InitializeAndRefine at their defaults.
-//
-//   verdict_matrix                                     # 30 scenes, 600 triplets, 1 px, 10 %
-//   outliers verdict_matrix --imu_noise_deg=0.5 --scenes=200    # gravity noise, the default
-//   threshold
+// What InitializeAndRefine says to common input mistakes (tests/scenes/input_mistakes.h) and to
+// pure outliers: per mistake, over synthetic scenes, how many calls fail, the inlier ratio of the
+// gravity-aware RANSAC, the gravity inconsistency angles and, for the calls that succeed, the
+// rotation error against the ground truth and how many are more than 5 deg off; then the time to
+// fail on pure outliers of EstimateThreeViewPoseRobust and InitializeAndRefine at their defaults.
+// Commands: examples/experiments/README.md (verdict_matrix).
 
 #include <gflags/gflags.h>
 

@@ -3,13 +3,26 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <fstream>
 #include <limits>
+#include <sstream>
+
+#include "cache_file.h"
 
 namespace trigrav::kitti {
 namespace {
 
 constexpr int kDescriptorSize = 128;
 constexpr float kCellPx = 32.0f;
+
+constexpr char kMagic[8] = {'T', 'G', 'M', 'A', 'T', 'C', 'H', '1'};
+
+struct MatchCacheHeader {
+  char magic[8];
+  std::int64_t a_count;
+  std::int64_t b_count;
+};
 
 // Squared Euclidean distance of two 128-byte SIFT descriptors (vectorised by the compiler).
 inline int SquaredDistance(const std::uint8_t* a, const std::uint8_t* b) {
@@ -87,6 +100,12 @@ class CellGrid {
 
 }  // namespace
 
+std::string MatchOptions::CacheTag() const {
+  std::ostringstream tag;
+  tag << "r" << ratio << "_x" << window_x_px << "_y" << window_y_px << "_m" << mutual;
+  return tag.str();
+}
+
 std::vector<int> MatchFeatures(const FrameFeatures& a,
                                const FrameFeatures& b,
                                const MatchOptions& options) {
@@ -114,6 +133,62 @@ std::vector<int> MatchFeatures(const FrameFeatures& a,
     b_index_of_a[i] = forward.index;
   }
   return b_index_of_a;
+}
+
+bool ReadMatchCache(const std::string& path,
+                    int a_count,
+                    int b_count,
+                    std::vector<int>* b_index_of_a) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return false;
+  MatchCacheHeader header;
+  if (!file.read(reinterpret_cast<char*>(&header), sizeof(header)) ||
+      std::memcmp(header.magic, kMagic, sizeof(kMagic)) != 0 || header.a_count != a_count ||
+      header.b_count != b_count) {
+    return false;
+  }
+  std::vector<std::int32_t> stored(static_cast<std::size_t>(a_count));
+  if (!file.read(reinterpret_cast<char*>(stored.data()),
+                 static_cast<std::streamsize>(stored.size() * sizeof(std::int32_t))) ||
+      file.peek() != std::ifstream::traits_type::eof()) {
+    return false;
+  }
+  if (std::any_of(stored.begin(), stored.end(),
+                  [&](std::int32_t j) { return j < -1 || j >= b_count; })) {
+    return false;
+  }
+  b_index_of_a->assign(stored.begin(), stored.end());
+  return true;
+}
+
+bool WriteMatchCache(const std::string& path, int b_count, const std::vector<int>& b_index_of_a) {
+  MatchCacheHeader header;
+  std::memcpy(header.magic, kMagic, sizeof(kMagic));
+  header.a_count = static_cast<std::int64_t>(b_index_of_a.size());
+  header.b_count = b_count;
+  const std::vector<std::int32_t> stored(b_index_of_a.begin(), b_index_of_a.end());
+  return WriteCacheFile(path, [&](std::ostream& file) {
+    file.write(reinterpret_cast<const char*>(&header), sizeof(header));
+    file.write(reinterpret_cast<const char*>(stored.data()),
+               static_cast<std::streamsize>(stored.size() * sizeof(std::int32_t)));
+  });
+}
+
+bool LoadOrMatchFeatures(const FrameFeatures& a,
+                         const FrameFeatures& b,
+                         const MatchOptions& options,
+                         const std::string& cache_path,
+                         std::vector<int>* b_index_of_a,
+                         std::string* error) {
+  if (!cache_path.empty() && ReadMatchCache(cache_path, a.size(), b.size(), b_index_of_a)) {
+    return true;
+  }
+  *b_index_of_a = MatchFeatures(a, b, options);
+  if (!cache_path.empty() && !WriteMatchCache(cache_path, b.size(), *b_index_of_a)) {
+    *error = "cannot write the match cache " + cache_path;
+    return false;
+  }
+  return true;
 }
 
 }  // namespace trigrav::kitti

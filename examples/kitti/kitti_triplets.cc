@@ -10,7 +10,8 @@
 // Writes to --output_dir: poses.csv (one row per triplet, method and stage), summary.csv (medians,
 // failures, time, ATE per method and stage), trajectories.csv (chained, aligned camera centres;
 // plot with plot_kitti_trajectories.py), frames.csv (per frame: SIFT time, tracks and matching
-// time of the triplet it starts). Features are cached per frame in --cache_dir.
+// time of the triplet it starts). Features (per frame) and matches (per pair) are cached in
+// --cache_dir.
 //
 // Defaults are the settings chosen on 00 and 02 (README.md, "Settings").
 
@@ -51,7 +52,7 @@ DEFINE_int32(last_frame, 299, "Last frame of the range (included).");
 DEFINE_string(output_dir, "", "Folder for the CSVs (created; required).");
 DEFINE_string(cache_dir,
               "",
-              "Feature cache folder (created; must not be inside --kitti_dir). Default: "
+              "Feature and match cache folder (created; must not be inside --kitti_dir). Default: "
               "<output_dir>/feature_cache.");
 DEFINE_string(methods,
               "all",

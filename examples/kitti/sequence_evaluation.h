@@ -20,8 +20,8 @@
 namespace trigrav::kitti {
 
 struct SequenceEvaluationOptions {
-  // Feature cache folder (created); empty: no cache, features are detected while walking the
-  // triplets (each frame once per worker chunk it falls in).
+  // Feature and match cache folder (created); empty: no cache, features are detected and pairs
+  // matched while walking the triplets (each once per worker chunk it falls in).
   std::string cache_dir;
   SiftOptions sift;
   MatchOptions match;

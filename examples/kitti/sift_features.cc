@@ -6,7 +6,8 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
-#include <thread>
+
+#include "cache_file.h"
 
 namespace trigrav::kitti {
 namespace {
@@ -73,11 +74,7 @@ bool WriteFeatureCache(const std::string& path,
   std::memcpy(header.magic, kMagic, sizeof(kMagic));
   header.image_bytes = image_bytes;
   header.count = static_cast<std::uint64_t>(features.size());
-  std::ostringstream suffix;
-  suffix << ".tmp" << std::this_thread::get_id();
-  const std::string temporary = path + suffix.str();
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+  return WriteCacheFile(path, [&](std::ostream& file) {
     const cv::Mat descriptors =
         features.descriptors.isContinuous() ? features.descriptors : features.descriptors.clone();
     file.write(reinterpret_cast<const char*>(&header), sizeof(header));
@@ -85,11 +82,7 @@ bool WriteFeatureCache(const std::string& path,
                static_cast<std::streamsize>(features.pixels.size() * sizeof(Eigen::Vector2f)));
     file.write(reinterpret_cast<const char*>(descriptors.data),
                static_cast<std::streamsize>(features.size()) * kDescriptorSize);
-    if (!file) return false;
-  }
-  std::error_code ec;
-  fs::rename(temporary, path, ec);
-  return !ec;
+  });
 }
 
 bool LoadOrDetectFeatures(const std::string& image_path,

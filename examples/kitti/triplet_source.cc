@@ -25,13 +25,19 @@ TripletSource::TripletSource(const KittiSequence& sequence,
       sift_options_(sift_options),
       match_options_(match_options) {}
 
-std::string TripletSource::CachePath(int frame) const {
+std::string TripletSource::CacheFile(int frame, const std::string& tail) const {
   if (cache_dir_.empty()) return "";
   char name[32];
   std::snprintf(name, sizeof(name), "%06d_", frame);
-  return (std::filesystem::path(cache_dir_) /
-          (sequence_.sequence + "_" + name + sift_options_.CacheTag() + ".sift"))
-      .string();
+  return (std::filesystem::path(cache_dir_) / (sequence_.sequence + "_" + name + tail)).string();
+}
+
+std::string TripletSource::CachePath(int frame) const {
+  return CacheFile(frame, sift_options_.CacheTag() + ".sift");
+}
+
+std::string TripletSource::MatchCachePath(int frame) const {
+  return CacheFile(frame, sift_options_.CacheTag() + "_" + match_options_.CacheTag() + ".match");
 }
 
 bool TripletSource::CacheFrame(int frame, bool* detected, std::string* error) const {
@@ -74,11 +80,17 @@ bool TripletSource::Get(int frame, TripletData* triplet, std::string* error) {
     }
     triplet->features_s = SecondsSince(start);
     start = std::chrono::steady_clock::now();
-    match01 = MatchFeatures(window_[0], window_[1], match_options_);
+    if (!LoadOrMatchFeatures(window_[0], window_[1], match_options_, MatchCachePath(frame),
+                             &match01, error)) {
+      return false;
+    }
     triplet->matching_s = SecondsSince(start);
   }
   start = std::chrono::steady_clock::now();
-  last_pair_match_ = MatchFeatures(window_[1], window_[2], match_options_);
+  if (!LoadOrMatchFeatures(window_[1], window_[2], match_options_, MatchCachePath(frame + 1),
+                           &last_pair_match_, error)) {
+    return false;
+  }
   triplet->matching_s += SecondsSince(start);
   window_frame_ = frame;
   triplet->tracks = ChainTracks(match01, last_pair_match_);

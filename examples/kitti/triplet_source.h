@@ -1,10 +1,10 @@
 #ifndef TRIGRAV_EXAMPLES_KITTI_TRIPLET_SOURCE_H_
 #define TRIGRAV_EXAMPLES_KITTI_TRIPLET_SOURCE_H_
 
-// Observations of the triplets (f, f+1, f+2) of a KITTI frame range: features (cached), pair
-// matches and chained tracks. Consecutive triplets share two frames and one pair match, which a
-// source keeps, so a worker walking through consecutive triplets detects / loads each frame and
-// matches each pair once.
+// Observations of the triplets (f, f+1, f+2) of a KITTI frame range: features and pair matches
+// (both cached), and chained tracks. Consecutive triplets share two frames and one pair match,
+// which a source keeps, so a worker walking through consecutive triplets detects / loads each frame
+// and matches each pair once.
 
 #include <Eigen/Core>
 #include <array>
@@ -30,8 +30,8 @@ struct TripletData {
 class TripletSource {
  public:
   // gravity_in_cam: per frame of the sequence's range (ImuGravityInCameras). cache_dir: folder of
-  // the feature cache files (created if missing); empty disables the cache. The references must
-  // outlive the source.
+  // the feature and match cache files (created if missing); empty disables the cache. The
+  // references must outlive the source.
   TripletSource(const KittiSequence& sequence,
                 const std::vector<Eigen::Vector3d>& gravity_in_cam,
                 const std::string& cache_dir,
@@ -50,6 +50,10 @@ class TripletSource {
   std::string CachePath(int frame) const;
 
  private:
+  // <cache_dir>/<sequence>_<frame, 6 digits>_<tail> ("" without a cache).
+  std::string CacheFile(int frame, const std::string& tail) const;
+  // Cache file of the match of frames (frame, frame + 1) ("" without a cache).
+  std::string MatchCachePath(int frame) const;
   bool Load(int frame, FrameFeatures* features, bool* detected, std::string* error) const;
 
   const KittiSequence& sequence_;

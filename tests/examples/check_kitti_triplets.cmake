@@ -8,8 +8,10 @@
 #    triplet, ground-truth steps of 0.3-1.5 m (10 Hz), every stage without failure or gross error,
 #    rotation below 0.1 deg, translation below 3 deg, inliers above 80 % of the tracks, ATE below
 #    0.5 m over the 8 m driven; the raw upright estimate has no tilt error, only yaw.
-# 2. The same run again from the feature cache of run 1 (with PEERS, the peers too): no frame is
-#    detected and the 3pt rows of poses.csv are those of run 1 (the cache round-trips). With PEERS:
+# 2. The same run again from the feature and match cache of run 1 (9 pair matches; one of them
+#    overwritten with a foreign file first, which must be matched again and rewritten) (with PEERS,
+#    the peers too): no frame is detected and the 3pt rows of poses.csv are those of run 1 (the
+#    cache round-trips). With PEERS:
 #    OpenCV's USAC-MAGSAC row below 0.1 deg and the ratio table trigrav / peer.
 # 3. 0.1 deg of IMU noise on each frame's pitch and roll: the upright raw estimate inherits the
 #    tilt error (> 0.05 deg), and the gravity-prior refinement, whose RANSAC corrects the tilt, wins
@@ -170,6 +172,11 @@ expect("exact gravity: raw rotation error is all yaw"
   yaw_minus_rotation GREATER_EQUAL -1 AND yaw_minus_rotation LESS_EQUAL 1)
 
 # 2. From the cache (and the peers).
+file(GLOB match_files "${WORK_DIR}/cache/*.match")
+list(LENGTH match_files num_match_files)
+expect("the first run caches the 9 pair matches (${num_match_files})" num_match_files EQUAL 9)
+list(GET match_files 4 foreign_match_file)
+file(WRITE "${foreign_match_file}" "not a match cache")
 if(PEERS)
   run_kitti_triplets(cached --peers)
 else()
@@ -179,7 +186,9 @@ expect_match("second run: every frame from the cache"
   "${cached_output}" "\\(0 frames detected, median 0 ms per frame on one thread; 10 from the cache\\)")
 read_poses("${WORK_DIR}/exact/poses.csv" 3pt exact_poses)
 read_poses("${WORK_DIR}/cached/poses.csv" 3pt cached_poses)
-expect("cached features give the same 3pt estimates" exact_poses STREQUAL cached_poses)
+expect("cached features and matches give the same 3pt estimates" exact_poses STREQUAL cached_poses)
+file(SIZE "${foreign_match_file}" rewritten_size)
+expect("a foreign match cache file is rewritten (${rewritten_size} bytes)" rewritten_size GREATER 100)
 if(PEERS)
   read_summary("${WORK_DIR}/cached/summary.csv" cached)
   expect("an opencv-usac-magsac row" "opencv-usac-magsac_raw" IN_LIST cached_rows)

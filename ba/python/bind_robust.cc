@@ -55,6 +55,8 @@ void BindRobustOptions(py::module_& m) {
       .Field("max_pose_sigma_deg", &RobustThreeViewOptions::max_pose_sigma_deg,
              "largest predicted sigma of the rotations and centre directions for a success, "
              "degrees (1.25); inf: no test")
+      .Field("min_inliers", &RobustThreeViewOptions::min_inliers,
+             "fewest distinct inlier triplets of a success (15)")
       .Finish(&RobustThreeViewOptions::Check);
   options.cls().attr("TILT_CORRECTION_FROM_GRAVITY_SIGMA") =
       RobustThreeViewOptions::kTiltCorrectionFromGravitySigma;

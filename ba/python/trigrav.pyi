@@ -202,6 +202,7 @@ class RobustThreeViewOptions:
     max_gravity_inconsistency_deg: float
     check_gravity_after_success: bool
     max_pose_sigma_deg: float
+    min_inliers: int
     def __init__(
         self,
         *,
@@ -212,6 +213,7 @@ class RobustThreeViewOptions:
         max_gravity_inconsistency_deg: float = -1.0,
         check_gravity_after_success: bool = True,
         max_pose_sigma_deg: float = 1.25,
+        min_inliers: int = 15,
     ) -> None: ...
 
 class RansacStatistics:

@@ -33,6 +33,10 @@ constexpr double kFlippedDeg = 135.0;
 // take in a few more triplets near the threshold on right data.
 int ClearMargin(int n) { return std::max(3, static_cast<int>(std::ceil(0.05 * n))); }
 
+// A chance fit this likely names the threshold, not the number of triplets, as the cause of a
+// chance consensus.
+constexpr double kLooseThresholdChance = 0.1;
+
 // A success's centre directions may differ at least this much from a gravity-free estimate that
 // explains more triplets (section 7.7): beyond it, one of the two is far off.
 constexpr double kMaxDirectionDisagreementDeg = 5.0;
@@ -189,7 +193,7 @@ std::string PixelsAgainstIntrinsics(const ThreeViewObservations& observations) {
         ((centre.array() < middle_low.array()) || (centre.array() > middle_high.array())).all();
     if (beyond || off_centre) {
       return Format(
-          "pixels of view %d span %.0f-%.0f x %.0f-%.0f px, not the %.0f x %.0f image "
+          "pixels of view %d span x %.4g to %.4g, y %.4g to %.4g px, not the %.4g x %.4g image "
           "of its principal point: another camera's intrinsics, a resized image or "
           "(row, column) pixels?",
           k + 1, low.x(), high.x(), low.y(), high.y(), image.x(), image.y());
@@ -198,12 +202,51 @@ std::string PixelsAgainstIntrinsics(const ThreeViewObservations& observations) {
   return "";
 }
 
+// Per triplet: 1 unless the same rays in all three views came earlier (section 7.7, step 2: a
+// repeated triplet, as duplicate keypoints give, adds no evidence).
+std::vector<char> FirstOccurrences(const TripletData& data) {
+  const std::size_t n = data.error.size();
+  std::vector<int> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<int>(i);
+  const auto less = [&](int a, int b) {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d &x = data.raw[k][a], &y = data.raw[k][b];
+      for (int c = 0; c < 3; ++c) {
+        if (x[c] != y[c]) return x[c] < y[c];
+      }
+    }
+    return a < b;
+  };
+  std::sort(order.begin(), order.end(), less);
+  std::vector<char> first(n, 1);
+  for (std::size_t i = 1; i < n; ++i) {
+    const int a = order[i - 1], b = order[i];
+    first[b] = !(data.raw[0][a] == data.raw[0][b] && data.raw[1][a] == data.raw[1][b] &&
+                 data.raw[2][a] == data.raw[2][b]);
+  }
+  return first;
+}
+
 void Fail(FailureCause cause, const std::string& message, RobustThreeViewEstimate* estimate) {
   estimate->success = false;
   estimate->cause = cause;
   estimate->message = message;
   estimate->pose = ThreeViewPose();
   estimate->inliers.clear();
+}
+
+// Fewer than min_inliers distinct triplets `verb` ("given", "fit"): "only 3 triplets fit (...)",
+// or "only 3 distinct triplets fit (45 with repeats) (...)".
+void FailWithTooFew(
+    int distinct, int total, const char* verb, int min_inliers, RobustThreeViewEstimate* estimate) {
+  const std::string count =
+      distinct == total
+          ? Format("only %d triplets %s", total, verb)
+          : Format("only %d distinct triplets %s (%d with repeats)", distinct, verb, total);
+  Fail(FailureCause::kTooFewInliers,
+       count +
+           Format(" (min_inliers %d): too few to judge a pose by; give more tracks", min_inliers),
+       estimate);
 }
 
 }  // namespace
@@ -219,6 +262,13 @@ void JudgeEstimate(const TripletData& data,
   const bool below_floor = !estimate->success && n >= settings.sample_size;
   if (!estimate->success && !below_floor) {
     estimate->cause = FailureCause::kTooFewTriplets;
+    return;
+  }
+  // Evidence counts distinct triplets: n_distinct of the n, k_distinct of the k inliers.
+  const std::vector<char> first = FirstOccurrences(data);
+  const int n_distinct = static_cast<int>(std::count(first.begin(), first.end(), 1));
+  if (n_distinct < settings.min_inliers) {
+    FailWithTooFew(n_distinct, n, "given", settings.min_inliers, estimate);
     return;
   }
   // Could the intrinsics have produced these pixels? The likeliest cause when they could not.
@@ -261,23 +311,28 @@ void JudgeEstimate(const TripletData& data,
   }
 
   // 1. Are there enough inliers to judge by?
-  if (k < settings.min_inliers) {
-    Fail(FailureCause::kTooFewInliers,
-         Format("only %d triplets fit (min_inliers %d): too few to judge a pose by; give more "
-                "tracks",
-                k, settings.min_inliers),
-         estimate);
+  std::vector<char> distinct_inliers = estimate->inliers;
+  for (int i = 0; i < n; ++i) distinct_inliers[i] &= first[i];
+  const int k_distinct =
+      static_cast<int>(std::count(distinct_inliers.begin(), distinct_inliers.end(), 1));
+  if (k_distinct < settings.min_inliers) {
+    FailWithTooFew(k_distinct, k, "fit", settings.min_inliers, estimate);
     return;
   }
   // 2. Could chance explain the consensus? (number of false alarms, section 7.7)
   const double alpha = ChanceFitProbability(observations, ransac.max_error);
-  estimate->evidence.log10_nfa =
-      Log10NumberOfFalseAlarms(n, k, settings.sample_size, settings.max_models_per_sample, alpha);
+  estimate->evidence.log10_nfa = Log10NumberOfFalseAlarms(
+      n_distinct, k_distinct, settings.sample_size, settings.max_models_per_sample, alpha);
   if (!(estimate->evidence.log10_nfa < 0.0)) {
+    const std::string remedy =
+        alpha >= kLooseThresholdChance
+            ? Format("the threshold %.3g lets a random triplet fit with probability %.2f: lower it",
+                     ransac.max_error, alpha)
+            : std::string("too few triplets; give more tracks");
     Fail(FailureCause::kChanceConsensus,
-         Format("%d of %d triplets fit as well by chance (NFA 10^%.1f): too few triplets; give "
-                "more tracks",
-                k, n, estimate->evidence.log10_nfa),
+         Format("%d of %d triplets fit as well by chance (NFA 10^%.1f): ", k_distinct, n_distinct,
+                estimate->evidence.log10_nfa) +
+             remedy,
          estimate);
     return;
   }
@@ -292,7 +347,7 @@ void JudgeEstimate(const TripletData& data,
   // 4. Do the inliers pin the pose down? (predicted precision at sigma = threshold / 3)
   const std::array<double, 3> units = ThresholdUnitsPerRadian(observations);
   const PosePrecision precision =
-      PredictPosePrecision(data, estimate->pose, estimate->inliers, units, ransac.max_error / 3.0,
+      PredictPosePrecision(data, estimate->pose, distinct_inliers, units, ransac.max_error / 3.0,
                            settings.uses_gravity && !settings.tilt_correcting);
   estimate->evidence.rotation_sigma_deg =
       precision.determined ? precision.rotation_sigma_deg : HUGE_VAL;

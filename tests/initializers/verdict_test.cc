@@ -178,5 +178,64 @@ TEST(Verdict, PixelsBeyondATenthOfTheImageAreAnotherCamerasIntrinsics) {
   }
 }
 
+// A repeated triplet (the same pixels in all three views, as duplicate keypoints give) adds no
+// evidence: 4 distinct triplets given 15 times each are too few (they once passed 14 deg off), and
+// 100 triplets given twice have the evidence of 100, not 200 (which would predict sigmas 0.71
+// times as large).
+TEST(Verdict, RepeatedTripletsCountOnce) {
+  std::mt19937_64 rng(6);
+  const SyntheticScene scene = Scene(100, 0.0, &rng);
+  const ThreeViewObservations once = ToObservations(scene);
+  ThreeViewObservations four = once, twice = once;
+  for (int k = 0; k < 3; ++k) {
+    const std::vector<Eigen::Vector2d>& pixels = once.pixels[k];
+    four.pixels[k].clear();
+    for (int copy = 0; copy < 15; ++copy) {
+      four.pixels[k].insert(four.pixels[k].end(), pixels.begin(), pixels.begin() + 4);
+    }
+    twice.pixels[k].insert(twice.pixels[k].end(), pixels.begin(), pixels.end());
+  }
+  const RobustThreeViewEstimate refused =
+      EstimateThreeViewPoseRobust(four, RobustThreeViewOptions());
+  ASSERT_FALSE(refused.success);
+  EXPECT_EQ(refused.cause, FailureCause::kTooFewInliers);
+  EXPECT_NE(refused.message.find("only 4 distinct triplets given (60 with repeats)"),
+            std::string::npos)
+      << refused.message;
+
+  const RobustThreeViewEstimate single =
+      EstimateThreeViewPoseRobust(once, RobustThreeViewOptions());
+  const RobustThreeViewEstimate doubled =
+      EstimateThreeViewPoseRobust(twice, RobustThreeViewOptions());
+  ASSERT_TRUE(single.success) << single.message;
+  ASSERT_TRUE(doubled.success) << doubled.message;
+  EXPECT_NEAR(doubled.ransac.num_inliers, 2 * single.ransac.num_inliers, 4);
+  EXPECT_NEAR(doubled.evidence.rotation_sigma_deg / single.evidence.rotation_sigma_deg, 1.0, 0.1);
+  EXPECT_NEAR(doubled.evidence.direction_sigma_deg / single.evidence.direction_sigma_deg, 1.0, 0.1);
+  // Each inlier adds about log10(alpha) = -5 (-400 in all); 200 would give about -800.
+  EXPECT_NEAR(doubled.evidence.log10_nfa, single.evidence.log10_nfa, 15.0);
+}
+
+// Fewer triplets than min_inliers are named as such, whatever RANSAC made of them; a chance
+// consensus under a threshold that lets most random triplets fit names the threshold.
+TEST(Verdict, TooFewTripletsAndALooseThresholdAreNamed) {
+  std::mt19937_64 rng(7);
+  const SyntheticScene few = Scene(10, 0.0, &rng);
+  const RobustThreeViewEstimate too_few =
+      EstimateThreeViewPoseRobust(ToObservations(few), RobustThreeViewOptions());
+  EXPECT_EQ(too_few.cause, FailureCause::kTooFewInliers);
+  EXPECT_NE(too_few.message.find("only 10 triplets given (min_inliers 15)"), std::string::npos)
+      << too_few.message;
+
+  const SyntheticScene scene = Scene(40, 0.0, &rng);
+  RobustThreeViewOptions loose;
+  loose.ransac.max_error = 1e6;
+  const RobustThreeViewEstimate chance = EstimateThreeViewPoseRobust(ToObservations(scene), loose);
+  EXPECT_EQ(chance.cause, FailureCause::kChanceConsensus);
+  EXPECT_NE(chance.message.find("the threshold 1e+06 lets a random triplet fit"), std::string::npos)
+      << chance.message;
+  EXPECT_LE(chance.message.size(), 200u) << chance.message;
+}
+
 }  // namespace
 }  // namespace trigrav

@@ -81,8 +81,12 @@ def test_verdict_gives_evidence_and_a_cause(scene, observations):
     estimate = trigrav.estimate_three_view_pose_robust(
         few, trigrav.RobustThreeViewOptions(max_pose_sigma_deg=math.inf))
     assert not estimate.success
-    assert estimate.cause in (trigrav.FailureCause.TOO_FEW_INLIERS,
-                              trigrav.FailureCause.BELOW_INLIER_FLOOR)
+    assert estimate.cause == trigrav.FailureCause.TOO_FEW_INLIERS
+    assert "only 10 triplets given (min_inliers 15)" in estimate.message, estimate.message
+    # min_inliers is an option: at 8 the 10 triplets go on to the other tests.
+    lowered = trigrav.estimate_three_view_pose_robust(
+        few, trigrav.RobustThreeViewOptions(min_inliers=8, max_pose_sigma_deg=math.inf))
+    assert "triplets given" not in lowered.message, lowered.message
 
 
 def test_both_engines_reach_the_same_optimum(scene, observations):

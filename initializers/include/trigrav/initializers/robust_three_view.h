@@ -83,9 +83,10 @@ struct RobustThreeViewOptions {
   // scale sigma exceeds 5 deg with probability exp(-12.5 / sigma^2), 3e-4 at 1.25 deg. What it
   // refuses on real data: derivations.md section 7.7. +infinity: no test.
   double max_pose_sigma_deg = 1.25;
-  // The fewest inliers a success may have. Rule behind the default: COLMAP's minimum for a
-  // two-view geometry (15); with fewer, the predicted precision itself is unreliable
-  // (derivations.md section 7.7).
+  // The fewest inliers a success may have, counted as distinct triplets (one repeated with the
+  // same pixels in all three views counts once, in the evidence as well). Rule behind the
+  // default: COLMAP's minimum for a two-view geometry (15); with fewer, the predicted precision
+  // itself is unreliable (derivations.md section 7.7).
   int min_inliers = 15;
 
   // Throws std::invalid_argument naming the first bad field.

@@ -57,6 +57,8 @@ void BindRobustOptions(py::module_& m) {
              "degrees (1.25); inf: no test")
       .Field("min_inliers", &RobustThreeViewOptions::min_inliers,
              "fewest distinct inlier triplets of a success (15)")
+      .Field("refined_afterwards", &RobustThreeViewOptions::refined_afterwards,
+             "the caller refines the pose: judge its inliers' optimum alone (False)")
       .Finish(&RobustThreeViewOptions::Check);
   options.cls().attr("TILT_CORRECTION_FROM_GRAVITY_SIGMA") =
       RobustThreeViewOptions::kTiltCorrectionFromGravitySigma;
@@ -132,11 +134,19 @@ void BindResults(py::module_& m) {
                     "predicted at a noise of the threshold / 3")
       .def_readonly("direction_sigma_deg", &ConsensusEvidence::direction_sigma_deg,
                     "of the centres' directions, predicted at a noise of the threshold / 3")
+      .def_readonly("rotation_offset_deg", &ConsensusEvidence::rotation_offset_deg,
+                    "the pose's offset from its inliers' least-squares optimum (Gauss-Newton step)")
+      .def_readonly("direction_offset_deg", &ConsensusEvidence::direction_offset_deg,
+                    "the centres' directions' offset from that optimum")
+      .def("sigma_with_offset_deg", &ConsensusEvidence::SigmaWithOffsetDeg,
+           "max of sigma + offset / 4 for the rotations and the directions")
       .def("__repr__", [](const ConsensusEvidence& e) {
-        return "ConsensusEvidence(log10_nfa=" + std::string(py::repr(py::float_(e.log10_nfa))) +
-               ", rotation_sigma_deg=" + std::string(py::repr(py::float_(e.rotation_sigma_deg))) +
-               ", direction_sigma_deg=" + std::string(py::repr(py::float_(e.direction_sigma_deg))) +
-               ")";
+        const auto number = [](double x) { return std::string(py::repr(py::float_(x))); };
+        return "ConsensusEvidence(log10_nfa=" + number(e.log10_nfa) +
+               ", rotation_sigma_deg=" + number(e.rotation_sigma_deg) +
+               ", direction_sigma_deg=" + number(e.direction_sigma_deg) +
+               ", rotation_offset_deg=" + number(e.rotation_offset_deg) +
+               ", direction_offset_deg=" + number(e.direction_offset_deg) + ")";
       });
 
   py::class_<RobustThreeViewEstimate>(m, "RobustThreeViewEstimate",

@@ -203,6 +203,7 @@ class RobustThreeViewOptions:
     check_gravity_after_success: bool
     max_pose_sigma_deg: float
     min_inliers: int
+    refined_afterwards: bool
     def __init__(
         self,
         *,
@@ -214,6 +215,7 @@ class RobustThreeViewOptions:
         check_gravity_after_success: bool = True,
         max_pose_sigma_deg: float = 1.25,
         min_inliers: int = 15,
+        refined_afterwards: bool = False,
     ) -> None: ...
 
 class RansacStatistics:
@@ -272,6 +274,11 @@ class ConsensusEvidence:
     def rotation_sigma_deg(self) -> float: ...
     @property
     def direction_sigma_deg(self) -> float: ...
+    @property
+    def rotation_offset_deg(self) -> float: ...
+    @property
+    def direction_offset_deg(self) -> float: ...
+    def sigma_with_offset_deg(self) -> float: ...
 
 class RobustThreeViewEstimate:
     @property

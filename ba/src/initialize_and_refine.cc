@@ -95,6 +95,7 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
   RobustThreeViewOptions robust = options.robust;
   robust.max_tilt_correction_deg = TiltCorrectionBoundDeg(options);
   robust.max_gravity_inconsistency_deg = GravityInconsistencyBoundDeg(options);
+  robust.refined_afterwards = options.refine;
   estimate.robust = EstimateThreeViewPoseRobust(observations, robust);
   const RobustThreeViewEstimate& ransac = estimate.robust;
   estimate.timings.ransac_s = SecondsSince(start);
@@ -140,6 +141,19 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
         estimate.message =
             "refinement failed, keeping the initial pose: " + refinement.summary.message;
         estimate.refinement = std::move(refinement);
+        // The RANSAC pose stays the answer: its offset from its inliers' optimum counts, as in a
+        // call without refinement (robust_three_view.h, refined_afterwards).
+        if (robust.max_tilt_correction_deg == 0.0 &&
+            !(ransac.evidence.SigmaWithOffsetDeg() <= robust.max_pose_sigma_deg)) {
+          estimate.success = false;
+          estimate.cause = FailureCause::kUncertainPose;
+          estimate.message =
+              "refinement failed and the RANSAC pose lies off its inliers' "
+              "optimum: " +
+              estimate.refinement.summary.message;
+          estimate.timings.total_s = SecondsSince(start);
+          return estimate;
+        }
       }
       break;
     }
@@ -173,11 +187,23 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
       shift > kMaxRefinementShiftDeg) {
     estimate.success = false;
     estimate.cause = FailureCause::kRefinementShift;
-    char message[200];
-    std::snprintf(message, sizeof(message),
-                  "the refinement moved the pose %.1f deg from its verified RANSAC estimate: "
-                  "gravity noisier than the yaw-only model? Use the gravity-prior model",
-                  shift);
+    // A RANSAC pose already off its inliers' optimum (robust_three_view.h, refined_afterwards)
+    // points to the geometry rather than the gravity.
+    const ConsensusEvidence& evidence = estimate.robust.evidence;
+    const double offset = std::max(evidence.rotation_offset_deg, evidence.direction_offset_deg);
+    char message[220];
+    if (!(evidence.SigmaWithOffsetDeg() <= robust.max_pose_sigma_deg)) {
+      std::snprintf(message, sizeof(message),
+                    "the refinement moved the pose %.1f deg from its RANSAC estimate, %.1f deg "
+                    "off its inliers' optimum: too weak a geometry (short baselines, a planar "
+                    "scene)?",
+                    shift, offset);
+    } else {
+      std::snprintf(message, sizeof(message),
+                    "the refinement moved the pose %.1f deg from its verified RANSAC estimate: "
+                    "gravity noisier than the yaw-only model? Use the gravity-prior model",
+                    shift);
+    }
     estimate.message = message;
   }
   return estimate;

@@ -85,6 +85,7 @@ PosePrecision Predict(const TripletData& data,
   const Eigen::Matrix<double, 3, 2> center2_tangent = TangentBasis(C[1]);
   Eigen::Matrix<double, kParams, kParams> information =
       Eigen::Matrix<double, kParams, kParams>::Zero();
+  Eigen::Matrix<double, kParams, 1> gradient = Eigen::Matrix<double, kParams, 1>::Zero();
   for (std::size_t n = 0; n < inliers.size(); ++n) {
     if (!inliers[n]) continue;
     // Midpoint triangulation (section 7.1) of the unit rays in reference coordinates.
@@ -103,6 +104,7 @@ PosePrecision Predict(const TripletData& data,
     const Eigen::Vector3d point = normal.inverse() * rhs;
     PoseJacobian pose_jacobian = PoseJacobian::Zero();
     Eigen::Matrix<double, 6, 3> point_jacobian;
+    Eigen::Matrix<double, 6, 1> residual;
     bool visible = true;
     for (int k = 0; k < 3 && visible; ++k) {
       const Eigen::Vector3d in_cam = R[k] * (point - C[k]);
@@ -112,6 +114,7 @@ PosePrecision Predict(const TripletData& data,
       const Eigen::Matrix<double, 2, 3> residual_from_point =
           (units_per_radian[k] / (sigma * depth)) * TangentBasis(ray[k]).transpose();
       point_jacobian.middleRows<2>(2 * k) = residual_from_point * R[k];
+      residual.segment<2>(2 * k) = residual_from_point * in_cam;
       if (k == 0) continue;
       // p = R_k (X - C_k) with R_k <- R_k Exp(omega): dp/domega = -R_k [X - C_k]_x.
       const Eigen::Matrix3d from_rotation = -R[k] * Skew(point - C[k]);
@@ -137,6 +140,9 @@ PosePrecision Predict(const TripletData& data,
     if (point_ldlt.info() != Eigen::Success || !(point_information.determinant() > 0.0)) continue;
     information.noalias() += pose_jacobian.transpose() * pose_jacobian;
     information.noalias() -= cross.transpose() * point_ldlt.solve(cross);
+    gradient.noalias() += pose_jacobian.transpose() * residual;
+    gradient.noalias() -=
+        cross.transpose() * point_ldlt.solve(point_jacobian.transpose() * residual);
   }
   PosePrecision precision;
   const Eigen::LLT<Eigen::Matrix<double, kParams, kParams>> llt(information);
@@ -168,6 +174,18 @@ PosePrecision Predict(const TripletData& data,
                         covariance.template block<3, 3>(2 * kRotation + 2, 2 * kRotation + 2) *
                         normal_part) /
       C[2].squaredNorm();
+  // The Gauss-Newton step to the inliers' least-squares optimum: its size in degrees.
+  const Eigen::Matrix<double, kParams, 1> step = -covariance * gradient;
+  double step_rotation = 0.0;
+  for (int view = 0; view < 2; ++view) {
+    step_rotation =
+        std::max(step_rotation, step.template segment<kRotation>(kRotation * view).norm());
+  }
+  const double step_center2 = step.template segment<2>(2 * kRotation).norm();
+  const double step_center3 =
+      (normal_part * step.template segment<3>(2 * kRotation + 2)).norm() / C[2].norm();
+  precision.rotation_offset_deg = kDegPerRad * step_rotation;
+  precision.direction_offset_deg = kDegPerRad * std::max(step_center2, step_center3);
   precision.determined = true;
   precision.rotation_sigma_deg = kDegPerRad * std::sqrt(rotation_variance);
   precision.direction_sigma_deg =

@@ -39,12 +39,16 @@ double Log10NumberOfFalseAlarms(int n, int k, int sample_size, int max_models, d
 
 // Standard deviations of the pose that `inliers` of `data` give at pose `pose` with isotropic
 // observation noise `sigma` (in the threshold's unit, scaled per view by `units_per_radian`),
-// from the Gauss-Newton information with every point eliminated (section 7.7). Rotations vary
-// about camera 1's vertical when `yaw_only`, freely otherwise; |C_2| = 1 fixes the scale.
+// from the Gauss-Newton information with every point eliminated (section 7.7), and the size of the
+// Gauss-Newton step from `pose` to the inliers' optimum. Rotations vary about camera 1's vertical
+// when `yaw_only`, freely otherwise; |C_2| = 1 fixes the scale.
 struct PosePrecision {
   bool determined = false;         // the information is positive definite
   double rotation_sigma_deg = 0;   // largest over views 2 and 3 and directions
   double direction_sigma_deg = 0;  // of the centres' directions C_2 / |C_2|, C_3 / |C_3|
+  // The Gauss-Newton step from `pose` to the inliers' least-squares optimum, measured as above.
+  double rotation_offset_deg = 0;
+  double direction_offset_deg = 0;
 };
 PosePrecision PredictPosePrecision(const TripletData& data,
                                    const ThreeViewPose& pose,

@@ -79,6 +79,11 @@ const SolverInfo& Info(InitialSolver solver) {
 
 const char* InitialSolverName(InitialSolver solver) { return Info(solver).name; }
 
+double ConsensusEvidence::SigmaWithOffsetDeg() const {
+  return std::max(rotation_sigma_deg + rotation_offset_deg / 4.0,
+                  direction_sigma_deg + direction_offset_deg / 4.0);
+}
+
 const char* FailureCauseName(FailureCause cause) {
   switch (cause) {
     case FailureCause::kNone:
@@ -200,6 +205,7 @@ RobustThreeViewEstimate EstimateThreeViewPoseRobust(const ThreeViewObservations&
   verdict.check_gravity_after_success = options.check_gravity_after_success;
   verdict.max_pose_sigma_deg = options.max_pose_sigma_deg;
   verdict.min_inliers = options.min_inliers;
+  verdict.judge_offset = !options.refined_afterwards && !verdict.tilt_correcting;
   internal::JudgeEstimate(data, observations, ransac, verdict, &estimate);
   stopped();
   return estimate;

@@ -353,6 +353,10 @@ void JudgeEstimate(const TripletData& data,
       precision.determined ? precision.rotation_sigma_deg : HUGE_VAL;
   estimate->evidence.direction_sigma_deg =
       precision.determined ? precision.direction_sigma_deg : HUGE_VAL;
+  estimate->evidence.rotation_offset_deg =
+      precision.determined ? precision.rotation_offset_deg : HUGE_VAL;
+  estimate->evidence.direction_offset_deg =
+      precision.determined ? precision.direction_offset_deg : HUGE_VAL;
   const double sigma =
       std::max(estimate->evidence.rotation_sigma_deg, estimate->evidence.direction_sigma_deg);
   if (!(sigma <= settings.max_pose_sigma_deg)) {
@@ -360,6 +364,21 @@ void JudgeEstimate(const TripletData& data,
          Format("%d triplets leave the pose uncertain (predicted sigma %.2g deg > "
                 "max_pose_sigma_deg %.2g): too few or short tracks, or too little baseline",
                 k, sigma, settings.max_pose_sigma_deg),
+         estimate);
+    return;
+  }
+  // The RANSAC pose is the answer unless the caller refines it: its offset from the inliers'
+  // optimum counts too (section 7.7, step 4).
+  if (settings.judge_offset &&
+      !(estimate->evidence.SigmaWithOffsetDeg() <= settings.max_pose_sigma_deg)) {
+    Fail(FailureCause::kUncertainPose,
+         Format("%d triplets leave the pose uncertain (sigma %.2g deg, %.2g deg off their "
+                "optimum; max_pose_sigma_deg %.2g): too few or short tracks, or too little "
+                "baseline",
+                k, sigma,
+                std::max(estimate->evidence.rotation_offset_deg,
+                         estimate->evidence.direction_offset_deg),
+                settings.max_pose_sigma_deg),
          estimate);
     return;
   }

@@ -1032,7 +1032,8 @@ TEST(BadInputMatrix, EveryEntryPointAgainstEveryCase) {
 
 // The robust estimator's parallax test with noise (the matrix is noise-free): 1 px of image noise
 // and 20 % outliers, threshold 3 px. Without baseline of camera 2 every method must report failure
-// with the reason; the generic scene with the same noise must still be estimated.
+// with the reason; the generic scene with the same noise must still be estimated within 5 deg, or
+// refused as uncertain where the linear solvers' poses lie off their inliers' optimum.
 TEST(BadInputMatrix, RobustEstimatorRejectsNoisyDataWithoutParallax) {
   for (const Geometry geometry : {Geometry::kZeroBaseline2, Geometry::kZeroBaselines,
                                   Geometry::kIdenticalViews, Geometry::kGeneric}) {
@@ -1062,13 +1063,25 @@ TEST(BadInputMatrix, RobustEstimatorRejectsNoisyDataWithoutParallax) {
         EXPECT_NE(estimate.message.find("baseline"), std::string::npos) << estimate.message;
         continue;
       }
+      if (!estimate.success) {
+        // The linear solvers' poses may lie degrees off their inliers' optimum (8pt: 5.3 deg at a
+        // sigma of 0.9 deg, the pose itself 7.6 deg off in translation; the linear tensor 5.5
+        // deg): uncertain as the answer of a call without refinement.
+        EXPECT_TRUE(solver == InitialSolver::kTrifocalLinear ||
+                    solver == InitialSolver::kEssential8pt)
+            << InitialSolverName(solver) << ": " << estimate.message;
+        EXPECT_EQ(estimate.cause, FailureCause::kUncertainPose) << estimate.message;
+        EXPECT_NE(estimate.message.find("off their optimum"), std::string::npos)
+            << estimate.message;
+        continue;
+      }
       ASSERT_TRUE(estimate.success) << InitialSolverName(solver) << ": " << estimate.message;
       const ThreeViewPoseErrors e = ComputeThreeViewPoseErrors(input.truth, estimate.pose);
       // Estimated, not rejected: errors at the level of robust_three_view_test (the linear
       // trifocal tensor, far weaker, within its 3 deg there).
       EXPECT_LT(e.MaxRotationDeg(), solver == InitialSolver::kTrifocalLinear ? 3.0 : 1.0)
           << InitialSolverName(solver);
-      EXPECT_LT(e.MaxTranslationDeg(), 10.0) << InitialSolverName(solver);
+      EXPECT_LT(e.MaxTranslationDeg(), 5.0) << InitialSolverName(solver);
     }
   }
 }

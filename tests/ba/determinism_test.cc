@@ -124,12 +124,15 @@ TEST_P(DeterminismEveryMethod, SameSeedGivesBitIdenticalEstimates) {
 // so with it every seed may end on the same bits; without it, and with 5 samples, the estimate is
 // the best of 5 minimal models, which only the same samples reproduce: over 6 seeds at least 4
 // distinct poses (equal samples from two seeds are rare). Fails if the seed is ignored. Without
-// outliers and with 0.1 px noise every minimal model of every method explains its sample.
+// outliers and with 0.1 px noise every minimal model of every method explains its sample. A minimal
+// model lies off its inliers' optimum, which the verdict weighs unless a refinement follows: here
+// one is declared, so that every seed's pose is returned.
 TEST_P(DeterminismEveryMethod, DifferentSeedsGiveDifferentTraces) {
   const ThreeViewObservations observations = MakeObservations(21, 0.1, 0.0);
   std::set<std::string> poses;
   for (std::uint64_t seed = 0; seed < 6; ++seed) {
     RobustThreeViewOptions options = RobustOptions(GetParam(), seed);
+    options.refined_afterwards = true;
     options.ransac.local_optimization = false;
     options.ransac.min_iterations = options.ransac.max_iterations = 5;
     const RobustThreeViewEstimate estimate = EstimateThreeViewPoseRobust(observations, options);

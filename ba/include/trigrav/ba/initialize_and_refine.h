@@ -26,6 +26,9 @@ struct InitializeAndRefineOptions {
   // inlier-ratio floor (robust.ransac.min_inlier_ratio) and the gravity consistency bound
   // (kGravityConsistencyFromGravitySigma by default: 4 sqrt(2) bundle_adjustment.gravity_sigma_deg,
   // at least 1 deg, with either rotation model, since the sigma describes the IMU).
+  // robust.refined_afterwards is set to `refine`: a refined call is judged by its refinement (the
+  // shift check), an unrefined one, or one whose refinement fails, by the RANSAC pose's offset
+  // from its inliers' optimum as well.
   RobustThreeViewOptions robust;
   bool refine = true;
   // After a refinement, the triplets are re-classified against the refined pose (same threshold)

@@ -88,6 +88,14 @@ struct RobustThreeViewOptions {
   // default: COLMAP's minimum for a two-view geometry (15); with fewer, the predicted precision
   // itself is unreliable (derivations.md section 7.7).
   int min_inliers = 15;
+  // Whether the caller refines the pose to its inliers' optimum (RefineThreeViewPose), as
+  // InitializeAndRefine does when it refines: the verdict then judges the optimum's precision
+  // (max_pose_sigma_deg) alone. false (the default): the returned RANSAC pose is the answer, and
+  // its offset from the optimum counts too (ConsensusEvidence::SigmaWithOffsetDeg; on ground-plane
+  // scenes with small baselines the RANSAC pose can lie 5-10 deg off an optimum predicted to
+  // 1 deg). Tilt-correcting estimates are judged by the optimum alone either way: their
+  // free-rotation optimum carries the images' own tilt.
+  bool refined_afterwards = false;
 
   // Throws std::invalid_argument naming the first bad field.
   void Check() const;
@@ -146,9 +154,19 @@ struct ConsensusEvidence {
   // log10 of the number of false alarms: how many consensuses as large would arise by chance among
   // uniformly random triplets; a success needs it below 0.
   double log10_nfa = std::numeric_limits<double>::infinity();
-  // Predicted standard deviations of the pose at a noise of the threshold / 3 (deg).
+  // Predicted standard deviations, at a noise of the threshold / 3, of the inliers' least-squares
+  // optimum (deg).
   double rotation_sigma_deg = std::numeric_limits<double>::infinity();
   double direction_sigma_deg = std::numeric_limits<double>::infinity();
+  // How far the pose lies from that optimum: the Gauss-Newton step to it (deg).
+  double rotation_offset_deg = std::numeric_limits<double>::infinity();
+  double direction_offset_deg = std::numeric_limits<double>::infinity();
+
+  // The sigma that bounds the pose's own error as sigma bounds the optimum's: the larger of
+  // sigma + offset / 4 for the rotations and the directions. Within max_pose_sigma_deg, an error
+  // beyond 4 max_pose_sigma_deg (5 deg at the default) is as improbable as for the optimum
+  // (derivations.md section 7.7, step 4).
+  double SigmaWithOffsetDeg() const;
 };
 
 struct RobustThreeViewEstimate {

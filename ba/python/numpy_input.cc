@@ -1,6 +1,7 @@
 #include "numpy_input.h"
 
 #include <cstddef>
+#include <cstdint>
 
 namespace trigrav::python {
 namespace {
@@ -124,6 +125,16 @@ std::vector<char> ToMask(const py::handle& object, const std::string& name) {
   if (kind != 'b' && kind != 'i' && kind != 'u')
     fail("dtype " + std::string(py::str(array.dtype())));
   if (array.ndim() != 1) fail("shape " + ShapeString(array));
+  // Integers must be 0 / 1: an index array (np.flatnonzero) is not a mask.
+  if (kind != 'b') {
+    const auto values =
+        py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(array);
+    for (py::ssize_t n = 0; n < values.shape(0); ++n) {
+      if (values.data()[n] != 0 && values.data()[n] != 1) {
+        fail("integers other than 0 and 1 (an index array? give a bool mask)");
+      }
+    }
+  }
   const auto flags = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(
       array.attr("astype")("bool"));
   std::vector<char> mask(static_cast<std::size_t>(flags.shape(0)));

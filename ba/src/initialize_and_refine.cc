@@ -27,7 +27,8 @@ constexpr double kMinGravityInconsistencyDeg = 1.0;
 
 // The yaw-only refinement may move the verified RANSAC pose at most this far (deg, a rotation or a
 // centre's direction): the verdict judged that pose, and a larger move means that the exact
-// gravity the model imposes contradicts it (derivations.md 7.7: a noisy gravity).
+// gravity the model imposes contradicts it (derivations.md 7.7: a noisy gravity) or, when the
+// RANSAC pose lay off its inliers' optimum, that the geometry is too weak for it.
 constexpr double kMaxRefinementShiftDeg = 5.0;
 
 constexpr double kDegPerRad = 180.0 / M_PI;
@@ -143,14 +144,16 @@ ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
         estimate.refinement = std::move(refinement);
         // The RANSAC pose stays the answer: its offset from its inliers' optimum counts, as in a
         // call without refinement (robust_three_view.h, refined_afterwards).
-        if (robust.max_tilt_correction_deg == 0.0 &&
-            !(ransac.evidence.SigmaWithOffsetDeg() <= robust.max_pose_sigma_deg)) {
+        const double sigma_with_offset = ransac.evidence.SigmaWithOffsetDeg();
+        if (!(sigma_with_offset <= robust.max_pose_sigma_deg)) {
+          char message[160];
+          std::snprintf(message, sizeof(message),
+                        "refinement failed, and the RANSAC pose lies off its inliers' optimum "
+                        "(sigma + offset / 4 = %.2g > max_pose_sigma_deg %.2g): ",
+                        sigma_with_offset, robust.max_pose_sigma_deg);
           estimate.success = false;
           estimate.cause = FailureCause::kUncertainPose;
-          estimate.message =
-              "refinement failed and the RANSAC pose lies off its inliers' "
-              "optimum: " +
-              estimate.refinement.summary.message;
+          estimate.message = message + estimate.refinement.summary.message;
           estimate.timings.total_s = SecondsSince(start);
           return estimate;
         }

@@ -79,8 +79,10 @@ class TiltChartFunctor {
 };
 using TiltChartManifold = ceres::AutoDiffManifold<TiltChartFunctor, 4, 2>;
 
-bool IsRotation(const Eigen::Matrix3d& r) {
-  return (r.transpose() * r - Eigen::Matrix3d::Identity()).norm() < 1e-6 && r.determinant() > 0.0;
+// A nested check's message without its "trigrav: " prefix, which Fail adds again.
+std::string WithoutPrefix(const std::invalid_argument& e) {
+  const std::string what = e.what();
+  return what.rfind("trigrav: ", 0) == 0 ? what.substr(9) : what;
 }
 
 // The rotation cam_from_W of image k held in its parameter block (model's form).
@@ -103,7 +105,7 @@ void NViewReconstruction::Check() const {
     try {
       cameras[c].Check();
     } catch (const std::invalid_argument& e) {
-      Fail(where, Indexed("cameras", c) + ": " + e.what());
+      Fail(where, Indexed("cameras", c) + ": " + WithoutPrefix(e));
     }
   }
   for (std::size_t k = 0; k < images.size(); ++k) {
@@ -114,13 +116,13 @@ void NViewReconstruction::Check() const {
     if (!image.cam_from_world.IsFinite()) {
       Fail(where, Indexed("images", k) + ".cam_from_world is not finite");
     }
-    if (!IsRotation(image.cam_from_world.R)) {
+    if (!image.cam_from_world.HasRotation()) {
       Fail(where, Indexed("images", k) + ".cam_from_world.R is not a rotation");
     }
     try {
       GravityAlignmentFromGravity(image.gravity_in_cam);
     } catch (const std::invalid_argument& e) {
-      Fail(where, Indexed("images", k) + ".gravity_in_cam: " + e.what());
+      Fail(where, Indexed("images", k) + ".gravity_in_cam: " + WithoutPrefix(e));
     }
   }
   for (std::size_t p = 0; p < points_in_world.size(); ++p) {

@@ -181,6 +181,10 @@ bool ThreeViewBundleAdjuster::Build(const ThreeViewPose& initial,
     message_ = "initial pose is not finite";
     return false;
   }
+  if (!initial.HasRotations()) {
+    message_ = "initial pose's R is not a rotation (R^T R = I, det R = 1)";
+    return false;
+  }
   const CameraPose* poses[2] = {&initial.cam2_from_cam1, &initial.cam3_from_cam1};
   // The pose is rescaled to |C2| = 1; stableNorm where norm() overflows (|C2| above ~1e154) or
   // underflows, so that any finite scale works.

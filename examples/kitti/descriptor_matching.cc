@@ -16,13 +16,34 @@ namespace {
 constexpr int kDescriptorSize = 128;
 constexpr float kCellPx = 32.0f;
 
-constexpr char kMagic[8] = {'T', 'G', 'M', 'A', 'T', 'C', 'H', '1'};
+constexpr char kMagic[8] = {'T', 'G', 'M', 'A', 'T', 'C', 'H', '2'};
 
 struct MatchCacheHeader {
   char magic[8];
   std::int64_t a_count;
   std::int64_t b_count;
+  std::uint64_t pixels_hash;
 };
+
+// FNV-1a over the bytes of both frames' pixels.
+std::uint64_t PixelsHash(const FrameFeatures& a, const FrameFeatures& b) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (const FrameFeatures* frame : {&a, &b}) {
+    const auto* bytes = reinterpret_cast<const unsigned char*>(frame->pixels.data());
+    const std::size_t size = frame->pixels.size() * sizeof(Eigen::Vector2f);
+    for (std::size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 1099511628211ull;
+  }
+  return hash;
+}
+
+MatchCacheHeader HeaderOf(const FrameFeatures& a, const FrameFeatures& b) {
+  MatchCacheHeader header;
+  std::memcpy(header.magic, kMagic, sizeof(kMagic));
+  header.a_count = a.size();
+  header.b_count = b.size();
+  header.pixels_hash = PixelsHash(a, b);
+  return header;
+}
 
 // Squared Euclidean distance of two 128-byte SIFT descriptors (vectorised by the compiler).
 inline int SquaredDistance(const std::uint8_t* a, const std::uint8_t* b) {
@@ -136,36 +157,36 @@ std::vector<int> MatchFeatures(const FrameFeatures& a,
 }
 
 bool ReadMatchCache(const std::string& path,
-                    int a_count,
-                    int b_count,
+                    const FrameFeatures& a,
+                    const FrameFeatures& b,
                     std::vector<int>* b_index_of_a) {
   std::ifstream file(path, std::ios::binary);
   if (!file) return false;
   MatchCacheHeader header;
+  const MatchCacheHeader expected = HeaderOf(a, b);
   if (!file.read(reinterpret_cast<char*>(&header), sizeof(header)) ||
-      std::memcmp(header.magic, kMagic, sizeof(kMagic)) != 0 || header.a_count != a_count ||
-      header.b_count != b_count) {
+      std::memcmp(&header, &expected, sizeof(header)) != 0) {
     return false;
   }
-  std::vector<std::int32_t> stored(static_cast<std::size_t>(a_count));
+  std::vector<std::int32_t> stored(static_cast<std::size_t>(a.size()));
   if (!file.read(reinterpret_cast<char*>(stored.data()),
                  static_cast<std::streamsize>(stored.size() * sizeof(std::int32_t))) ||
       file.peek() != std::ifstream::traits_type::eof()) {
     return false;
   }
   if (std::any_of(stored.begin(), stored.end(),
-                  [&](std::int32_t j) { return j < -1 || j >= b_count; })) {
+                  [&](std::int32_t j) { return j < -1 || j >= b.size(); })) {
     return false;
   }
   b_index_of_a->assign(stored.begin(), stored.end());
   return true;
 }
 
-bool WriteMatchCache(const std::string& path, int b_count, const std::vector<int>& b_index_of_a) {
-  MatchCacheHeader header;
-  std::memcpy(header.magic, kMagic, sizeof(kMagic));
-  header.a_count = static_cast<std::int64_t>(b_index_of_a.size());
-  header.b_count = b_count;
+bool WriteMatchCache(const std::string& path,
+                     const FrameFeatures& a,
+                     const FrameFeatures& b,
+                     const std::vector<int>& b_index_of_a) {
+  const MatchCacheHeader header = HeaderOf(a, b);
   const std::vector<std::int32_t> stored(b_index_of_a.begin(), b_index_of_a.end());
   return WriteCacheFile(path, [&](std::ostream& file) {
     file.write(reinterpret_cast<const char*>(&header), sizeof(header));
@@ -180,11 +201,11 @@ bool LoadOrMatchFeatures(const FrameFeatures& a,
                          const std::string& cache_path,
                          std::vector<int>* b_index_of_a,
                          std::string* error) {
-  if (!cache_path.empty() && ReadMatchCache(cache_path, a.size(), b.size(), b_index_of_a)) {
+  if (!cache_path.empty() && ReadMatchCache(cache_path, a, b, b_index_of_a)) {
     return true;
   }
   *b_index_of_a = MatchFeatures(a, b, options);
-  if (!cache_path.empty() && !WriteMatchCache(cache_path, b.size(), *b_index_of_a)) {
+  if (!cache_path.empty() && !WriteMatchCache(cache_path, a, b, *b_index_of_a)) {
     *error = "cannot write the match cache " + cache_path;
     return false;
   }

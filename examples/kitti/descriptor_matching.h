@@ -34,14 +34,18 @@ std::vector<int> MatchFeatures(const FrameFeatures& a,
                                const FrameFeatures& b,
                                const MatchOptions& options);
 
-// Binary cache of a match: a header (magic, the two frames' feature counts) then b_index_of_a.
-// Read returns false for a missing, truncated or foreign file, other feature counts or an index
-// out of range; Write goes through a temporary file and a rename (cache_file.h).
+// Binary cache of a match: a header (magic, the two frames' feature counts and a hash of their
+// pixels, so that re-detected features never read a stale match) then b_index_of_a. Read returns
+// false for a missing, truncated or foreign file, other features or an index out of range; Write
+// goes through a temporary file and a rename (cache_file.h).
 bool ReadMatchCache(const std::string& path,
-                    int a_count,
-                    int b_count,
+                    const FrameFeatures& a,
+                    const FrameFeatures& b,
                     std::vector<int>* b_index_of_a);
-bool WriteMatchCache(const std::string& path, int b_count, const std::vector<int>& b_index_of_a);
+bool WriteMatchCache(const std::string& path,
+                     const FrameFeatures& a,
+                     const FrameFeatures& b,
+                     const std::vector<int>& b_index_of_a);
 
 // MatchFeatures(a, b, options), from cache_path when it holds a valid cache of the pair, otherwise
 // matched (and written to cache_path; an empty cache_path disables the cache). The path's name

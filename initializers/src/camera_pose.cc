@@ -1,10 +1,16 @@
 #include "trigrav/initializers/camera_pose.h"
 
+#include <Eigen/LU>
+
 namespace trigrav {
 
 Eigen::Vector3d CameraPose::Center() const { return -R.transpose() * t; }
 
 bool CameraPose::IsFinite() const { return R.allFinite() && t.allFinite(); }
+
+bool CameraPose::HasRotation() const {
+  return (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-6 && R.determinant() > 0.0;
+}
 
 CameraPose CameraPose::Inverse() const {
   CameraPose inverse;

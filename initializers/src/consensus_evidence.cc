@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace trigrav {
 namespace internal {
@@ -228,6 +229,8 @@ double ChanceFitProbability(const ThreeViewObservations& observations, double th
 }
 
 double Log10NumberOfFalseAlarms(int n, int k, int sample_size, int max_models, double alpha) {
+  // Fewer than a minimal sample fit any pose: never evidence.
+  if (k < sample_size) return std::numeric_limits<double>::infinity();
   auto log10_choose = [](int a, int b) {
     return (std::lgamma(a + 1.0) - std::lgamma(b + 1.0) - std::lgamma(a - b + 1.0)) / M_LN10;
   };

@@ -34,7 +34,8 @@ double ChanceFitProbability(const ThreeViewObservations& observations, double th
 
 // log10 of the number of false alarms of k inliers among n triplets (Moisan and Stival's ORSA):
 // max_models (n - s) C(n, k) C(k, s) alpha^(k - s), s the minimal sample and max_models the most
-// models a sample gives. Below 0: fewer than one such consensus is expected by chance.
+// models a sample gives. Below 0: fewer than one such consensus is expected by chance. +infinity
+// for k < s.
 double Log10NumberOfFalseAlarms(int n, int k, int sample_size, int max_models, double alpha);
 
 // Standard deviations of the pose that `inliers` of `data` give at pose `pose` with isotropic

@@ -205,7 +205,7 @@ RobustThreeViewEstimate EstimateThreeViewPoseRobust(const ThreeViewObservations&
   verdict.check_gravity_after_success = options.check_gravity_after_success;
   verdict.max_pose_sigma_deg = options.max_pose_sigma_deg;
   verdict.min_inliers = options.min_inliers;
-  verdict.judge_offset = !options.refined_afterwards && !verdict.tilt_correcting;
+  verdict.judge_offset = !options.refined_afterwards;
   internal::JudgeEstimate(data, observations, ransac, verdict, &estimate);
   stopped();
   return estimate;

@@ -241,11 +241,10 @@ void FailWithTooFew(
     int distinct, int total, const char* verb, int min_inliers, RobustThreeViewEstimate* estimate) {
   const std::string count =
       distinct == total
-          ? Format("only %d triplets %s", total, verb)
-          : Format("only %d distinct triplets %s (%d with repeats)", distinct, verb, total);
+          ? Format("only %d triplets %s (", total, verb)
+          : Format("only %d distinct triplets %s (%d with repeats; ", distinct, verb, total);
   Fail(FailureCause::kTooFewInliers,
-       count +
-           Format(" (min_inliers %d): too few to judge a pose by; give more tracks", min_inliers),
+       count + Format("min_inliers %d): too few to judge a pose by; give more tracks", min_inliers),
        estimate);
 }
 
@@ -353,32 +352,36 @@ void JudgeEstimate(const TripletData& data,
       precision.determined ? precision.rotation_sigma_deg : HUGE_VAL;
   estimate->evidence.direction_sigma_deg =
       precision.determined ? precision.direction_sigma_deg : HUGE_VAL;
-  estimate->evidence.rotation_offset_deg =
-      precision.determined ? precision.rotation_offset_deg : HUGE_VAL;
-  estimate->evidence.direction_offset_deg =
-      precision.determined ? precision.direction_offset_deg : HUGE_VAL;
+  // A gravity-aware tilt-correcting estimate is judged by its optimum alone: its free-rotation
+  // optimum carries the images' own tilt, which the estimate corrects only within its bound.
+  const bool offset_measured = !(settings.uses_gravity && settings.tilt_correcting);
+  estimate->evidence.rotation_offset_deg = !precision.determined ? HUGE_VAL
+                                           : offset_measured     ? precision.rotation_offset_deg
+                                                                 : 0.0;
+  estimate->evidence.direction_offset_deg = !precision.determined ? HUGE_VAL
+                                            : offset_measured     ? precision.direction_offset_deg
+                                                                  : 0.0;
   const double sigma =
       std::max(estimate->evidence.rotation_sigma_deg, estimate->evidence.direction_sigma_deg);
   if (!(sigma <= settings.max_pose_sigma_deg)) {
     Fail(FailureCause::kUncertainPose,
          Format("%d triplets leave the pose uncertain (predicted sigma %.2g deg > "
                 "max_pose_sigma_deg %.2g): too few or short tracks, or too little baseline",
-                k, sigma, settings.max_pose_sigma_deg),
+                k_distinct, sigma, settings.max_pose_sigma_deg),
          estimate);
     return;
   }
   // The RANSAC pose is the answer unless the caller refines it: its offset from the inliers'
   // optimum counts too (section 7.7, step 4).
-  if (settings.judge_offset &&
-      !(estimate->evidence.SigmaWithOffsetDeg() <= settings.max_pose_sigma_deg)) {
+  const double sigma_with_offset = estimate->evidence.SigmaWithOffsetDeg();
+  if (settings.judge_offset && !(sigma_with_offset <= settings.max_pose_sigma_deg)) {
     Fail(FailureCause::kUncertainPose,
-         Format("%d triplets leave the pose uncertain (sigma %.2g deg, %.2g deg off their "
-                "optimum; max_pose_sigma_deg %.2g): too few or short tracks, or too little "
-                "baseline",
-                k, sigma,
+         Format("the RANSAC pose lies %.2g deg off its %d inliers' optimum (sigma %.2g deg; "
+                "sigma + offset / 4 = %.2g > max_pose_sigma_deg %.2g): refine it "
+                "(InitializeAndRefine)",
                 std::max(estimate->evidence.rotation_offset_deg,
                          estimate->evidence.direction_offset_deg),
-                settings.max_pose_sigma_deg),
+                k_distinct, sigma, sigma_with_offset, settings.max_pose_sigma_deg),
          estimate);
     return;
   }

@@ -25,7 +25,7 @@ struct VerdictSettings {
   double max_gravity_inconsistency_deg = 0;  // resolved; +inf: no gravity-free comparison
   bool check_gravity_after_success = false;
   double max_pose_sigma_deg = 0;
-  bool judge_offset = false;  // the pose's offset from its inliers' optimum counts (step 4)
+  bool judge_offset = false;  // !refined_afterwards: the pose's offset from its optimum counts
   int min_inliers = 0;
 };
 

@@ -505,7 +505,7 @@ TEST(NViewBundleAdjustmentTest, RejectsBadInput) {
   bad = good;
   bad.images[3].gravity_in_cam *= 1e-300;
   expect_error(bad, {}, options,
-               "images[3].gravity_in_cam: trigrav: gravity direction is too short to normalise");
+               "images[3].gravity_in_cam: gravity direction is too short to normalise");
   bad = good;
   bad.images[4].camera_index = 1;
   expect_error(bad, {}, options, "images[4].camera_index");

@@ -45,5 +45,26 @@ TEST(ThreeViewPose, Cam3FromCam2ComposesThroughCameraOne) {
   EXPECT_LT((pose.Cam3FromCam2().Apply(x_cam2) - pose.cam3_from_cam1.Apply(x_cam1)).norm(), 1e-14);
 }
 
+// A rotation, not any matrix: scaled, reflected or perturbed beyond 1e-6 matrices are refused
+// (RefineThreeViewPose fails on such an initial pose, naming R).
+TEST(CameraPose, HasRotationOnlyForRotations) {
+  CameraPose pose;
+  EXPECT_TRUE(pose.HasRotation());
+  pose.R = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+  EXPECT_TRUE(pose.HasRotation());
+  const Eigen::Matrix3d rotation = pose.R;
+  pose.R = 2.0 * rotation;
+  EXPECT_FALSE(pose.HasRotation());
+  pose.R = rotation * Eigen::Vector3d(1.0, 1.0, -1.0).asDiagonal();  // a reflection
+  EXPECT_FALSE(pose.HasRotation());
+  pose.R = rotation;
+  pose.R(0, 1) += 1e-5;
+  EXPECT_FALSE(pose.HasRotation());
+  ThreeViewPose three;
+  EXPECT_TRUE(three.HasRotations());
+  three.cam3_from_cam1.R = 2.0 * rotation;
+  EXPECT_FALSE(three.HasRotations());
+}
+
 }  // namespace
 }  // namespace trigrav

@@ -199,8 +199,9 @@ TEST(Verdict, RepeatedTripletsCountOnce) {
       EstimateThreeViewPoseRobust(four, RobustThreeViewOptions());
   ASSERT_FALSE(refused.success);
   EXPECT_EQ(refused.cause, FailureCause::kTooFewInliers);
-  EXPECT_NE(refused.message.find("only 4 distinct triplets given (60 with repeats)"),
-            std::string::npos)
+  EXPECT_NE(
+      refused.message.find("only 4 distinct triplets given (60 with repeats; min_inliers 15)"),
+      std::string::npos)
       << refused.message;
 
   const RobustThreeViewEstimate single =

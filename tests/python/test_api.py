@@ -135,7 +135,7 @@ def test_a_ransac_pose_off_its_optimum_is_not_a_success():
         refused = trigrav.estimate_three_view_pose_robust(observations, options)
         assert not refused.success
         assert refused.cause == trigrav.FailureCause.UNCERTAIN_POSE
-        assert "off their optimum" in refused.message, refused.message
+        assert "inliers' optimum" in refused.message, refused.message
         options.refined_afterwards = True
         initial = trigrav.estimate_three_view_pose_robust(observations, options)
         options.refined_afterwards = False

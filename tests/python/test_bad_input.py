@@ -108,6 +108,18 @@ def test_cameras_solvers_and_masks(observations):
     with pytest.raises(ValueError, match=r"inliers: expected a 1-D bool array .*float64"):
         trigrav.refine_three_view_pose(observations, estimate.refined,
                                        estimate.inliers.astype(float))
+    with pytest.raises(ValueError, match=r"inliers: .*integers other than 0 and 1"):
+        trigrav.refine_three_view_pose(observations, estimate.refined,
+                                       np.arange(len(estimate.inliers)))
+    assert trigrav.refine_three_view_pose(
+        observations, estimate.refined, estimate.inliers.astype(np.uint8)).summary.success
+    not_a_rotation = trigrav.ThreeViewPose(
+        trigrav.CameraPose(2.0 * np.asarray(estimate.refined.cam2_from_cam1.R),
+                           estimate.refined.cam2_from_cam1.t),
+        estimate.refined.cam3_from_cam1)
+    refused = trigrav.refine_three_view_pose(observations, not_a_rotation, estimate.inliers)
+    assert not refused.summary.success
+    assert "R is not a rotation" in refused.summary.message, refused.summary.message
     with pytest.raises(ValueError, match=r"points_in_cam\[0\] is not in front"):
         observations.cameras[0].project(np.array([[0.0, 0.0, -1.0]]))
 

@@ -26,9 +26,9 @@ struct InitializeAndRefineOptions {
   // inlier-ratio floor (robust.ransac.min_inlier_ratio) and the gravity consistency bound
   // (kGravityConsistencyFromGravitySigma by default: 4 sqrt(2) bundle_adjustment.gravity_sigma_deg,
   // at least 1 deg, with either rotation model, since the sigma describes the IMU).
-  // robust.refined_afterwards is set to `refine`: a refined call is judged by its refinement (the
-  // shift check), an unrefined one, or one whose refinement fails, by the RANSAC pose's offset
-  // from its inliers' optimum as well.
+  // robust.refined_afterwards is set to `refine`: the RANSAC pose's offset from its inliers'
+  // optimum is judged when it is the answer (refine false, or the refinement failed), not when the
+  // refinement replaces it.
   RobustThreeViewOptions robust;
   bool refine = true;
   // After a refinement, the triplets are re-classified against the refined pose (same threshold)
@@ -84,7 +84,9 @@ struct ThreeViewEstimate {
 // (rotations and centre directions; beyond, the exact gravity the model imposes contradicts the
 // verified pose: FailureCause::kRefinementShift); anything else gives success == false with a
 // message, the likely cause first. If the refinement fails, `refined` is the initial pose and the
-// message says why (success stays true). The returned poses are always finite when success is true.
+// message says why; success stays true unless that pose lies off its inliers' optimum
+// (ConsensusEvidence::SigmaWithOffsetDeg beyond robust.max_pose_sigma_deg: kUncertainPose). The
+// returned poses are always finite when success is true.
 ThreeViewEstimate InitializeAndRefine(const ThreeViewObservations& observations,
                                       const InitializeAndRefineOptions& options);
 

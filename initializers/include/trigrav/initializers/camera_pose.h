@@ -18,6 +18,8 @@ struct CameraPose {
   Eigen::Vector3d Apply(const Eigen::Vector3d& point_in_ref) const { return R * point_in_ref + t; }
   // True when every entry of R and t is finite.
   bool IsFinite() const;
+  // True when R is a rotation: |R^T R - I| < 1e-6 (Frobenius) and det R > 0.
+  bool HasRotation() const;
 
   // The inverse transform: if *this is b_from_a, Inverse() is a_from_b = [R^T | -R^T t].
   CameraPose Inverse() const;
@@ -35,6 +37,7 @@ struct ThreeViewPose {
   // cam3_from_cam1 * cam2_from_cam1.Inverse().
   CameraPose Cam3FromCam2() const { return cam3_from_cam1 * cam2_from_cam1.Inverse(); }
   bool IsFinite() const { return cam2_from_cam1.IsFinite() && cam3_from_cam1.IsFinite(); }
+  bool HasRotations() const { return cam2_from_cam1.HasRotation() && cam3_from_cam1.HasRotation(); }
 };
 
 }  // namespace trigrav

@@ -132,7 +132,7 @@ enum class FailureCause {
   kNone,                // a success
   kTooFewTriplets,      // fewer triplets than the minimal sample, or no model at all
   kBelowInlierFloor,    // no model explains ransac.min_inlier_ratio of the triplets
-  kTooFewInliers,       // fewer inliers than min_inliers
+  kTooFewInliers,       // fewer distinct inliers (or triplets) than min_inliers
   kChanceConsensus,     // as many inliers would fit by chance (number of false alarms >= 1)
   kUncertainPose,       // the inliers leave the pose uncertain (max_pose_sigma_deg)
   kNoParallax,          // camera 2's centre, which sets the scale, is not observable
@@ -185,7 +185,8 @@ struct RobustThreeViewEstimate {
 // (three_view_error.h). Gravity is used by the gravity-aware methods only. Throws
 // std::invalid_argument for invalid observations or options. A success means the evidence supports
 // the pose (derivations.md section 7.7): its inliers could not fit by chance (number of false
-// alarms below 1), they pin the pose down (max_pose_sigma_deg), and no gravity-free model explains
+// alarms below 1), they pin the pose down (max_pose_sigma_deg; unless refined_afterwards, the
+// pose's offset from their least-squares optimum counts too), and no gravity-free model explains
 // clearly more triplets (check_gravity_after_success). Anything else (too few triplets, no model, a
 // best model below ransac.min_inlier_ratio, a consensus chance explains, an uncertain pose, gravity
 // or images the other model contradicts) gives success == false with a message of about 200

@@ -33,7 +33,7 @@ double LargestErrorDeg(const SyntheticScene& scene, const ThreeViewPose& pose) {
   return std::max(errors.MaxRotationDeg(), errors.MaxTranslationDeg());
 }
 
-// The case: 3-6 triplets with 20 % outliers once returned successes up to 176 deg off.
+// The case: 3-6 triplets with 20 % outliers gave successes up to 176 deg off.
 TEST(Verdict, FewTripletsWithOutliersNeverSucceedFarOff) {
   std::mt19937_64 rng(5);
   int successes = 0;
@@ -179,9 +179,9 @@ TEST(Verdict, PixelsBeyondATenthOfTheImageAreAnotherCamerasIntrinsics) {
 }
 
 // A repeated triplet (the same pixels in all three views, as duplicate keypoints give) adds no
-// evidence: 4 distinct triplets given 15 times each are too few (they once passed 14 deg off), and
-// 100 triplets given twice have the evidence of 100, not 200 (which would predict sigmas 0.71
-// times as large).
+// evidence: 4 distinct triplets given 15 times each are too few (counted 60 times, they pass
+// 14 deg off), and 100 triplets given twice have the evidence of 100, not 200 (which would
+// predict sigmas 0.71 times as large).
 TEST(Verdict, RepeatedTripletsCountOnce) {
   std::mt19937_64 rng(6);
   const SyntheticScene scene = Scene(100, 0.0, &rng);

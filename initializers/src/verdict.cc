@@ -235,8 +235,8 @@ void Fail(FailureCause cause, const std::string& message, RobustThreeViewEstimat
   estimate->inliers.clear();
 }
 
-// Fewer than min_inliers distinct triplets `verb` ("given", "fit"): "only 3 triplets fit (...)",
-// or "only 3 distinct triplets fit (45 with repeats) (...)".
+// Fewer than min_inliers distinct triplets `verb` ("given", "fit"): "only 3 triplets fit
+// (min_inliers 15): ...", or "only 3 distinct triplets fit (45 with repeats; min_inliers 15): ...".
 void FailWithTooFew(
     int distinct, int total, const char* verb, int min_inliers, RobustThreeViewEstimate* estimate) {
   const std::string count =
